@@ -559,13 +559,20 @@ pub(crate) fn point_columns(model: &Model, name: &str, option: &str) -> Result<(
     }
 }
 
-/// A direction `x,y` of the option `option`: two finite numbers, not both zero.
+/// A direction `x,y` of the option `option`: two finite numbers, not both zero, as the unit
+/// vector along them. Only the direction counts: taken to unit length (by its larger component
+/// first, which neither overflows nor underflows), the products formed with it stay in range
+/// whatever size it was given at (`1e308,1e308` overflowed the point's distance from the
+/// guide's line to `inf`; `1e-320,1e-320`, subnormal, lost digits of it).
 fn direction(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
     let d = point(spec, option)?;
     if d == [0.0, 0.0] {
         return Err(usage(format!("{option} {spec} has no direction: give a vector along the guide, e.g. 0,1")));
     }
-    Ok(d)
+    let m = d[0].abs().max(d[1].abs());
+    let d = [d[0] / m, d[1] / m];
+    let n = d[0].hypot(d[1]);
+    Ok([d[0] / n, d[1] / n])
 }
 
 /// The cam's checks on standard error: the largest pressure angle, the sharpest convex point

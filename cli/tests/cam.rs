@@ -319,6 +319,33 @@ fn a_follower_that_is_not_the_points_motion_is_a_usage_error() {
     std::fs::remove_file(&plot).expect("the plot written");
 }
 
+/// A guide is a direction whatever its size: `1e308,0` or `1e-320,0` is `1,0`, refused saying
+/// the point leaves it by the whole stroke of 20 (its products with the size overflowed to
+/// "by inf", and the subnormal lost digits of it), and `0,1e308`, `0,1e-320` are taken and give
+/// the table of `0,1` to the bit.
+#[test]
+fn a_guide_is_its_direction_whatever_its_size() {
+    let cam = shipped("dwell_cam.kl");
+    let follower = ["cam", cam.as_str(), "--point", "follower", "--roller", "10"];
+    for guide in ["1e308,0", "-1e308,1e-300", "1e-320,0"] {
+        let out = kinloop(&[&follower[..], &["--guide", guide]].concat());
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{guide}: {err}");
+        let says = format!(
+            "--guide {guide}: the follower's point `follower` does not move along this guide: it leaves the guide's \
+             line by 20 over a stroke of 20"
+        );
+        assert!(err.contains(&says), "{guide}: `{says}` missing: {err}");
+    }
+    let unit = kinloop(&[&follower[..], &["--guide", "0,1"]].concat());
+    assert!(unit.status.success(), "{}", stderr(&unit));
+    for guide in ["0,1e308", "1e-300,1e308", "0,1e-320"] {
+        let out = kinloop(&[&follower[..], &["--guide", guide]].concat());
+        assert!(out.status.success(), "{guide}: {}", stderr(&out));
+        assert_eq!(out.stdout, unit.stdout, "{guide}");
+    }
+}
+
 #[test]
 fn the_plot_draws_the_pitch_curve_and_the_profile() {
     let path = std::env::temp_dir().join(format!("kinloop-cam-{}.svg", std::process::id()));
