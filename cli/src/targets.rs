@@ -31,6 +31,10 @@ pub fn read(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
 /// The rows of `text`; the error is what is wrong and where (`line 3: ...`), to follow the
 /// file's name.
 fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
+    // A byte order mark first (a spreadsheet's "CSV UTF-8" writes one) is no part of the first
+    // number: left on, it made a row of numbers "not a row of finite numbers", shown unchanged
+    // (the mark is invisible).
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {
@@ -138,6 +142,15 @@ mod tests {
             assert!(e.starts_with(&want), "{text:?}: {e}");
             assert!(e.contains("separated by commas `,`"), "{text:?}: {e}");
         }
+    }
+
+    /// A byte order mark before the first row (a spreadsheet's "CSV UTF-8") is skipped, as it is
+    /// before a header; one later in the file is not a number.
+    #[test]
+    fn a_byte_order_mark_first_is_skipped() {
+        assert_eq!(rows("\u{feff}1,2\r\n3,4\r\n"), Ok(vec![vec![1.0, 2.0], vec![3.0, 4.0]]));
+        assert_eq!(rows("\u{feff}x,y\n1,2\n"), Ok(vec![vec![1.0, 2.0]]));
+        assert!(rows("1,2\n\u{feff}3,4\n").is_err());
     }
 
     #[test]
