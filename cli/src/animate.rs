@@ -105,9 +105,12 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let samples = match req.samples.map(str::trim) {
         None => DEFAULT_SAMPLES,
-        Some(s) => s.parse::<usize>().map_err(|_| {
-            usage(format!("--samples {s} is not a count (a list of counts is for a grid, with --grid)"))
-        })?,
+        // A list is a grid's; one count is read as every count is, its message saying what is
+        // wrong with it (a count too large said "is not a count").
+        Some(s) if s.contains(',') => {
+            return Err(usage(format!("--samples {s} is not a count (a list of counts is for a grid, with --grid)")));
+        }
+        Some(s) => crate::count::count(s).map_err(|why| usage(format!("--samples {s}: {why}")))?,
     };
     if samples < 2 {
         return Err(usage(format!("an animation needs at least 2 samples, not {samples}")));
@@ -242,10 +245,15 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     let counts: Vec<usize> = match req.samples {
         None => vec![default_grid_values(ni, max); ni],
         Some(spec) => {
-            let counts: Result<Vec<usize>, _> = spec.split(',').map(|v| v.trim().parse::<usize>()).collect();
-            match counts {
-                Ok(c) if c.len() == 1 => vec![c[0]; ni],
-                Ok(c) if c.len() == ni => c,
+            // Each count read as a count, the one that is not named with what is wrong with it:
+            // `9,-1` for two inputs said to give one count per input, as it did.
+            let counts = (spec.split(',').map(|v| {
+                crate::count::count(v).map_err(|why| usage(format!("--samples {spec}: `{}`: {why}", v.trim())))
+            }))
+            .collect::<Result<Vec<usize>, Failed>>()?;
+            match counts.len() {
+                1 => vec![counts[0]; ni],
+                n if n == ni => counts,
                 _ => {
                     return Err(usage(format!(
                         "--samples {spec}: give one count of values for every input, or one per input ({ni})"

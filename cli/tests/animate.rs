@@ -407,6 +407,30 @@ fn grid_usage_errors() {
     run(grid(&["--samples", "1,7"], &p), &path, "one value of input `th1` from 0 to 3");
     // More cells than the page's poses.
     run(grid(&["--samples", "30"], &p), &path, "--frames");
+    // A count that is not one is named with what is wrong with it, not said to be one count too
+    // many or too few (two were given for two inputs).
+    run(grid(&["--samples", "9,-1"], &p), &path, "--samples 9,-1: `-1`: a count cannot be negative");
+    run(grid(&["--samples", "9,2.5"], &p), &path, "--samples 9,2.5: `2.5`: a count is a whole number");
+    run(
+        grid(&["--samples", "99999999999999999999,2"], &p),
+        &path,
+        "`99999999999999999999`: 99999999999999999999 is beyond",
+    );
+    let huge = [
+        "animate",
+        &fb,
+        "--from",
+        "0",
+        "--to",
+        "1",
+        "--samples",
+        "99999999999999999999",
+        "--params",
+        FOUR_BAR,
+        "--out",
+        &p,
+    ];
+    fails_without_output(&huge, &path, 2, "--samples 99999999999999999999: 99999999999999999999 is beyond any count");
     // Without --grid, a list of counts is not a sample count.
     let list = ["animate", &fb, "--from", "0", "--to", "1", "--samples", "9,7", "--params", FOUR_BAR, "--out", &p];
     fails_without_output(&list, &path, 2, "--grid");
