@@ -269,9 +269,26 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     };
     apart(&points, pivot, &pivot_option, &point_name, &sample)?;
     follows(&points, &follower, fa, &point_name)?;
-    let refused = |e: Error| {
-        eprintln!("error: {name}: {e}");
-        Failed(exit::SOLVE_FAILED)
+    // The profile's refusals are of the follower given for this motion (a flat face through the
+    // cam's pivot, an offset beyond what f64 relates to the arm, a face that stops turning
+    // against the cam), as the checks above are: usage errors naming the options and the
+    // sample's input, not the library's function with exit code 1 ("invalid argument:
+    // flat_face_profile: at sample 77 ...").
+    let refused = |e: Error| match e {
+        Error::InvalidArgument(why) => {
+            let why = ["flat_face_profile: ", "cam_profile: "]
+                .iter()
+                .fold(why.as_str(), |w, p| w.strip_prefix(p).unwrap_or(w));
+            usage(format!(
+                "{name}: no cam for the follower given ({}): {}",
+                follower_options(fa),
+                with_inputs(why, &sample)
+            ))
+        }
+        e => {
+            eprintln!("error: {name}: {e}");
+            Failed(exit::SOLVE_FAILED)
+        }
     };
     let shape = match face {
         Some(face) => {
@@ -288,6 +305,77 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
         None => Shape::Roller(cam_profile(&follower_samples, pivot, roller).map_err(refused)?),
     };
     Ok(Found { pivot, turn, inputs, deg: req.deg, columns, shape })
+}
+
+/// The follower's options as given (`--rocker -40,140 --flat --face-offset -135`), the cam's
+/// pivot with them, for a message about the cam they make.
+fn follower_options(fa: &FollowerArgs) -> String {
+    let mut given = Vec::new();
+    let mut push = |option: &str, value: Option<String>| given.push(format!("{option} {}", value.unwrap_or_default()));
+    if let Some(g) = &fa.guide {
+        push("--guide", Some(g.clone()));
+    }
+    if let Some(r) = &fa.rocker {
+        push("--rocker", Some(r.clone()));
+    }
+    if let Some(r) = fa.roller {
+        push("--roller", Some(Number(r).to_string()));
+    }
+    if let Some(t) = fa.flat {
+        push("--flat", Some(Number(t).to_string()));
+    }
+    if let Some(d) = fa.face_offset {
+        push("--face-offset", Some(Number(d).to_string()));
+    }
+    match &fa.pivot {
+        Some(p) => push("--pivot", Some(p.clone())),
+        None => given.push("the cam's pivot 0,0".to_string()),
+    }
+    given.join(", ")
+}
+
+/// `text` with each `sample K` followed by its input (`sample(K)`: `sample 77 (input 1.34)`),
+/// and its numbers written as the command writes them (an offset of `1e308` was three hundred
+/// digits).
+fn with_inputs(text: &str, sample: &dyn Fn(usize) -> String) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find("sample ") {
+        out += &rest[..at];
+        let after = &rest[at + "sample ".len()..];
+        let digits = after.bytes().take_while(u8::is_ascii_digit).count();
+        match after[..digits].parse::<usize>() {
+            Ok(k) if !after[digits..].starts_with('\'') => out += &sample(k),
+            _ => out += &rest[at..at + "sample ".len() + digits],
+        }
+        rest = &after[digits..];
+    }
+    out += rest;
+    short_numbers(&out)
+}
+
+/// `text` with each long number in positional notation (more than 24 characters: `{}` of a
+/// huge or tiny f64, `1000...0` or `0.000...1`) written as numbers are elsewhere (`1e308`).
+fn short_numbers(text: &str) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit() || c == '-') {
+        let (before, from) = rest.split_at(start);
+        out += before;
+        let sign = usize::from(from.starts_with('-'));
+        let len = sign + from[sign..].find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(from.len() - sign);
+        let word = &from[..len];
+        let alone = !before.ends_with(|c: char| c.is_alphanumeric() || c == '.' || c == '_')
+            && !from[len..].starts_with(|c: char| c.is_alphanumeric() || c == '_');
+        // A sentence's full stop after the number is kept.
+        let number = word.trim_end_matches('.');
+        match (len > 24 && alone, number.parse::<f64>()) {
+            (true, Ok(v)) => out += &(Number(v).to_string() + &word[number.len()..]),
+            _ => out += &word[..len.max(1)],
+        }
+        rest = &from[len.max(1)..];
+    }
+    out + rest
 }
 
 /// Refuses a model whose inputs are not one angle: the cam turns with the one input.
@@ -681,4 +769,23 @@ fn draw(curves: &[(&str, Vec<[f64; 2]>)], name: &str) -> Result<String, Failed> 
             eprintln!("error: {name}: cannot draw the cam: {e}");
             Failed(exit::SOLVE_FAILED)
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::short_numbers;
+
+    /// Long numbers in positional notation (a huge or tiny f64's `{}`) are written short,
+    /// whatever is around them; short ones, names and indices are left as they are.
+    #[test]
+    fn long_numbers_are_written_short() {
+        let huge = format!("{}", 1e308);
+        let tiny = format!("{}", -1e-300);
+        assert_eq!(short_numbers(&format!("the offset {huge} and")), "the offset 1e308 and");
+        assert_eq!(short_numbers(&format!("({tiny} past it)")), "(-1e-300 past it)");
+        assert_eq!(short_numbers(&format!("at {huge}.")), "at 1e308.");
+        let kept = "sample 77 (input 1.34) at [-1.2731580795675796, 129.98842096021622], x2 e-5 a-b";
+        assert_eq!(short_numbers(kept), kept);
+        assert_eq!(short_numbers("é 3 ü -"), "é 3 ü -");
+    }
 }

@@ -319,6 +319,34 @@ fn a_follower_that_is_not_the_points_motion_is_a_usage_error() {
     std::fs::remove_file(&plot).expect("the plot written");
 }
 
+/// A flat face whose options make no cam for the motion (a rocking face offset so that it
+/// passes through the cam's pivot, an offset beyond what f64 relates to the arm) is a usage
+/// error naming the options and the sample's input, as the other follower checks are: it was
+/// exit code 1 with "invalid argument: flat_face_profile: at sample 77 ...", the offset 1e308
+/// written in three hundred digits. Nothing is written, no plot left.
+#[test]
+fn a_flat_face_that_makes_no_cam_is_a_usage_error_naming_the_options() {
+    let cam = shipped("dwell_cam.kl");
+    let plot = std::env::temp_dir().join(format!("kinloop-no-cam-{}.svg", std::process::id()));
+    let pin = ["cam", cam.as_str(), "--point", "rocker_pin", "--rocker", "-40,140", "--flat", "--deg"];
+    for (offset, says) in [
+        (
+            "-135",
+            "DwellCamRocker: no cam for the follower given (--rocker -40,140, --flat 0, --face-offset -135, the \
+             cam's pivot 0,0): at sample 77 (input 77 deg) the face passes through the cam's pivot",
+        ),
+        ("1e308", "at sample 0 (input 0 deg) the arm from the rocker's pivot"),
+        ("-1e308", "beside the face's offset -1e308 and the pivots' distance"),
+    ] {
+        let out = kinloop(&[&pin[..], &["--face-offset", offset, "--plot", plot.to_str().unwrap()]].concat());
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{offset}: {err}");
+        assert!(err.contains(says), "{offset}: `{says}` missing: {err}");
+        assert!(!err.contains("flat_face_profile") && !err.contains("0000000000"), "{offset}: {err}");
+        assert!(out.stdout.is_empty() && !plot.exists(), "{offset}: {err}");
+    }
+}
+
 /// A guide is a direction whatever its size: `1e308,0` or `1e-320,0` is `1,0`, refused saying
 /// the point leaves it by the whole stroke of 20 (its products with the size overflowed to
 /// "by inf", and the subnormal lost digits of it), and `0,1e308`, `0,1e-320` are taken and give
