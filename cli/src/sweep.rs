@@ -102,7 +102,18 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let streamed = CsvRows::new(out, &header)
         .and_then(|mut rows| stream(&mut rows, &units, next).and_then(|stop| rows.finish().map(|()| stop)));
     bar.finish_and_clear();
-    let stop = streamed.map_err(|e| output::failed("the table", e))?;
+    let stop = match streamed {
+        Ok(stop) => stop,
+        // A table that cannot be written (standard output full, its reader gone) fails the
+        // command before the events are: the events file it made is removed again (it was
+        // left empty).
+        Err(e) => {
+            if let Some(file) = events_file {
+                file.abandon();
+            }
+            return Err(output::failed("the table", e));
+        }
+    };
     let events = sweep.events().to_vec();
     drop(sweep);
     output::write_into(events_file, "the events", |file| write_events(model, &events, req.deg, file))?;

@@ -9,7 +9,7 @@ use crate::sweep::{range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
-use kinloop_runtime::{Error, Event, Number, QuantityKind, Table, TraceConfig, TracedPointOf};
+use kinloop_runtime::{Error, Event, Number, QuantityKind, Table, TraceConfig, TracedOf, TracedPointOf};
 use std::path::Path;
 
 /// What `kinloop trace` was asked.
@@ -85,25 +85,16 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     })?;
     // Created before anything is written: a path that cannot be written stops before any output.
     let events_file = output::created(req.events, "the events file")?;
-    let base = units(model, &kinds, req.deg);
-    let header = Table::new(base.iter().map(|(n, _)| n.clone()).collect())
-        .with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
-    // Angles in degrees as `solve` writes its inputs: the shortest decimal that reads back.
-    let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { degrees(v) } else { v };
-    let mut outputs = vec![0.0; model.outputs().len()];
-    // Written row by row (buffered), as a sweep's: the curve's points are not copied into a
-    // table first (at `--max-points` 10^7 that copy was a gigabyte).
-    let mut rows = CsvRows::new(std::io::BufWriter::new(std::io::stdout().lock()), &header)
-        .map_err(|e| output::failed("the table", e))?;
-    let mut row = Vec::with_capacity(kinds.len());
-    for p in &traced.points {
-        let (x, q): (&[f64], &[f64]) = (p.x.as_ref(), p.q.as_ref());
-        model.outputs_at(x, q, &mut outputs).map_err(|e| failed(&e))?;
-        row.clear();
-        row.extend(x.iter().chain(q).chain(&outputs).zip(&kinds).map(|(v, k)| angle(*k, *v)));
-        rows.row(&row).map_err(|e| output::failed("the table", e))?;
+    // The points, then the events: a table that cannot be written (standard output full, its
+    // reader gone) fails the command before the events are, and the events file it made is
+    // removed again (it was left empty).
+    let written = write_points(model, &traced, &kinds, req, &failed);
+    if let Err(e) = written {
+        if let Some(file) = events_file {
+            file.abandon();
+        }
+        return Err(e);
     }
-    rows.finish().map_err(|e| output::failed("the table", e))?;
     // In the order met along the curve: by the point nearest each (a limit position is located
     // between two points; a kink and a crossing are points).
     let mut events: Vec<Event> = traced.folds.iter().chain(&traced.kinks).chain(&traced.crossings).cloned().collect();
@@ -124,5 +115,36 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     } else {
         eprintln!("{name}: the curve left the path from `from - (to - from)` to `to` after {points} points");
     }
+    Ok(())
+}
+
+/// Writes the points of `traced` to standard output as CSV with units (the inputs, the
+/// unknowns and the outputs), row by row; `failed` reports an output that cannot be computed.
+fn write_points(
+    model: &mut Model,
+    traced: &TracedOf<Heap, Heap>,
+    kinds: &[QuantityKind],
+    req: &Request,
+    failed: &dyn Fn(&dyn std::fmt::Display) -> Failed,
+) -> Result<(), Failed> {
+    let base = units(model, kinds, req.deg);
+    let header = Table::new(base.iter().map(|(n, _)| n.clone()).collect())
+        .with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
+    // Angles in degrees as `solve` writes its inputs: the shortest decimal that reads back.
+    let angle = |k: QuantityKind, v: f64| if req.deg && k == QuantityKind::Angle { degrees(v) } else { v };
+    let mut outputs = vec![0.0; model.outputs().len()];
+    // Written row by row (buffered), as a sweep's: the curve's points are not copied into a
+    // table first (at `--max-points` 10^7 that copy was a gigabyte).
+    let mut rows = CsvRows::new(std::io::BufWriter::new(std::io::stdout().lock()), &header)
+        .map_err(|e| output::failed("the table", e))?;
+    let mut row = Vec::with_capacity(kinds.len());
+    for p in &traced.points {
+        let (x, q): (&[f64], &[f64]) = (p.x.as_ref(), p.q.as_ref());
+        model.outputs_at(x, q, &mut outputs).map_err(|e| failed(&e))?;
+        row.clear();
+        row.extend(x.iter().chain(q).chain(&outputs).zip(kinds).map(|(v, k)| angle(*k, *v)));
+        rows.row(&row).map_err(|e| output::failed("the table", e))?;
+    }
+    rows.finish().map_err(|e| output::failed("the table", e))?;
     Ok(())
 }

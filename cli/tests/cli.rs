@@ -424,6 +424,38 @@ fn a_file_written_part_way_is_removed() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A sweep or a trace whose table cannot be written (standard output full) fails before its
+/// events are written: the `--events` file it made is removed, not left empty (dynamics and cam
+/// removed theirs already); a file that was there before is left as it was.
+#[test]
+fn an_events_file_made_is_removed_when_the_table_cannot_be_written() {
+    let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-events-full-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let four_bar = shipped("four_bar.kl");
+    for command in ["sweep", "trace"] {
+        let (made, there) = (dir.join(format!("{command}.csv")), dir.join(format!("{command}-there.csv")));
+        std::fs::write(&there, "kept\n").expect("a file there before");
+        for events in [&made, &there] {
+            let args = [command, &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "1"];
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+                .args(args)
+                .args(["--events", &events.display().to_string()])
+                .stdout(full.try_clone().expect("/dev/full"))
+                .output()
+                .expect("the kinloop binary runs");
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(74), "{command}: {err}");
+            assert!(err.contains("error: cannot write the table"), "{command}: {err}");
+        }
+        assert!(!made.exists(), "{command}: the events file it made was left");
+        assert_eq!(std::fs::read_to_string(&there).expect("kept"), "kept\n", "{command}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A count of one is named in the singular: one input given where a mechanism has two.
 #[test]
 fn one_input_is_named_in_the_singular() {
