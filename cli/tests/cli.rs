@@ -1039,3 +1039,22 @@ fn singular_pivot_lets_a_slide_brush_its_pivot() {
     assert_eq!(out.status.code(), Some(2));
     std::fs::remove_file(&file).unwrap();
 }
+
+/// A sweep from a change point (a parallelogram four-bar at 0) with `--singular-pivot 0`: the
+/// solve of its first state finds it singular, and the message says so, not that a pivot ratio
+/// of 0 is "below `SweepConfig::singular_pivot`, 0e0".
+#[test]
+fn a_singular_start_below_no_threshold_says_what_found_it() {
+    let four_bar = shipped("four_bar.kl");
+    let sweep = ["sweep", &four_bar, "--params", "a=1,b=3,c=1,d=3", "--from", "0", "--to", "90", "--deg"];
+    for (pivot, says) in [
+        ("0", "(a pivot ratio of 0.00e0, where the solve of its first state finds the Jacobian singular"),
+        ("1e-6", "(a pivot ratio of 0.00e0, below `SweepConfig::singular_pivot`, 1e-6)"),
+    ] {
+        let out = kinloop(&[&sweep[..], &["--singular-pivot", pivot]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{pivot}: {err}");
+        assert!(err.contains("error: the sweep starts at a singular position"), "{pivot}: {err}");
+        assert!(err.contains(says), "{pivot}: `{says}` missing: {err}");
+    }
+}

@@ -190,10 +190,10 @@ pub enum Error {
     /// the input alone does not say which branch leads on. Start inside the range, or trace the
     /// curve from there (`trace_curve` starts at a limit position).
     #[error(
-        "the sweep starts at a singular position (a pivot ratio of {pivot_ratio:.2e}, below \
-         `SweepConfig::singular_pivot`, {singular_pivot:e}): a limit position or a change point, where the input \
+        "the sweep starts at a singular position ({}): a limit position or a change point, where the input \
          alone does not say which branch leads on and the analogs are the rounding's; start the sweep inside the \
-         range (a reachable range ends at limit positions), or trace the curve from it (`trace_curve`) {at}"
+         range (a reachable range ends at limit positions), or trace the curve from it (`trace_curve`) {at}",
+        start_cause(*pivot_ratio, *singular_pivot)
     )]
     SingularStart {
         /// The first sample's smallest pivot ratio.
@@ -446,6 +446,21 @@ fn underflow_cause(magnitude: f64, least: f64) -> String {
 /// Why a position is singular, with the numbers as they are: a pivot ratio below the tolerance,
 /// or a root that Newton reaches only linearly (each step about half the last, as where the
 /// Jacobian is singular at the root) while the ratio has not yet fallen below the tolerance.
+/// Why a sweep's start is singular ([`Error::SingularStart`]): its pivot ratio below the sweep's
+/// `singular_pivot`, or else the solve of its first state found it singular (below
+/// `NewtonConfig::singular_tol`, or reached only linearly), whatever `singular_pivot` is: with
+/// `singular_pivot` 0 the message said a ratio of 0 was "below" 0.
+fn start_cause(pivot_ratio: f64, singular_pivot: f64) -> String {
+    if pivot_ratio < singular_pivot {
+        format!("a pivot ratio of {pivot_ratio:.2e}, below `SweepConfig::singular_pivot`, {singular_pivot:e}")
+    } else {
+        format!(
+            "a pivot ratio of {pivot_ratio:.2e}, where the solve of its first state finds the Jacobian singular \
+             (`NewtonConfig::singular_tol`)"
+        )
+    }
+}
+
 fn singular_cause(pivot_ratio: f64, tolerance: f64) -> String {
     if pivot_ratio < tolerance {
         format!("the Jacobian's pivot ratio is {pivot_ratio:e} (below the tolerance {tolerance:e})")
