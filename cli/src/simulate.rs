@@ -220,14 +220,22 @@ fn failure(name: &str, e: Error, deg: bool) -> Failed {
 /// steps the whole span needs.
 fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
     let need = if t > 0.0 { steps as f64 * (t_end / t) } else { f64::INFINITY };
-    let pace = if need.is_finite() {
-        format!("; at that pace the whole span needs about {} steps", significant(need))
-    } else {
-        String::new()
+    // More steps than any count `--max-steps` takes (`--time 1e308`): raising it cannot reach
+    // the end, and the message said to.
+    let (pace, advice) = match need {
+        n if n.is_finite() && n <= usize::MAX as f64 => (
+            format!("; at that pace the whole span needs about {} steps", significant(n)),
+            "raise --max-steps, or simulate a shorter --time".to_string(),
+        ),
+        n if n.is_finite() => (
+            format!("; at that pace the whole span needs about {} steps", significant(n)),
+            format!("more than any --max-steps (at most {}): simulate a shorter --time", usize::MAX),
+        ),
+        _ => (String::new(), "simulate a shorter --time (no --max-steps reaches it at that pace)".to_string()),
     };
     format!(
         "{name}: the simulation made its budget of {} (--max-steps) and reached only t = {} of \
-         --time {}{pace}: raise --max-steps, or simulate a shorter --time",
+         --time {}{pace}: {advice}",
         Count(steps, "step"),
         significant(t),
         Number(t_end)
@@ -356,5 +364,17 @@ mod tests {
             assert!(m.contains(what), "`{what}` missing: {m}");
         }
         assert!(!m.contains("memory"), "{m}");
+    }
+
+    /// A span that needs more steps than any `--max-steps` takes (`--time 1e20`, or `1e308`
+    /// whose count overflows) says to simulate a shorter time, not to raise the budget.
+    #[test]
+    fn a_span_beyond_any_budget_says_to_shorten_the_time() {
+        for t_end in [1e20, 1e308] {
+            let m = budget_spent("Engine", 1_000_000, 102.0, t_end);
+            assert!(m.contains("simulate a shorter --time"), "{t_end}: {m}");
+            assert!(!m.contains("raise --max-steps"), "{t_end}: {m}");
+        }
+        assert!(budget_spent("Engine", 1_000_000, 102.0, 1e20).contains("about 9.80e23 steps"));
     }
 }
