@@ -130,6 +130,8 @@ impl Declaration {
         if let Some(ratio) = branch.singular_pivot {
             let config = model.sweep_config().with_singular_pivot(ratio);
             if model.set_sweep_config(config).is_err() {
+                // Written as numbers are elsewhere: `{ratio}` wrote 1e308 in 309 digits.
+                let ratio = kinloop_runtime::Number(ratio);
                 return Err(exit::usage(format!("--singular-pivot {ratio} must be at least 0 and below 1")));
             }
         }
