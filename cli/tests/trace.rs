@@ -237,3 +237,32 @@ fn the_most_points_stop_the_trace_and_it_says_so() {
     assert_eq!(rows.len(), 7);
     assert!(String::from_utf8_lossy(&out.stderr).contains("stopped at --max-points 7"));
 }
+
+/// A declaration without unknowns (a point and an output of the input alone) traces its input
+/// from `--from` to past `--to`, every point the closed form's: the SVD of its empty Jacobian
+/// panicked ("Cannot compute the SVD of an empty matrix", exit code 101).
+#[test]
+fn a_declaration_without_unknowns_is_traced() {
+    let dir = std::env::temp_dir().join(format!("kinloop-trace-no-unknowns-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let file = dir.join("no_unknowns.kl");
+    std::fs::write(
+        &file,
+        "pub struct X {\n    params a = 2.0;\n    input phi;\n    output y = a * phi;\n    point p = a @ phi;\n}\n",
+    )
+    .expect("the declaration");
+    let out = kinloop(&["trace", file.to_str().unwrap(), "--from", "0", "--to", "1", "--ds", "0.1"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let (header, rows) = csv(&out);
+    assert_eq!(header, ["phi [rad]", "p.x [length unit]", "p.y [length unit]", "y [length unit]"]);
+    assert!(rows.len() >= 10, "{} points", rows.len());
+    for row in &rows {
+        let phi = row[0];
+        assert!((-1.0..=1.0 + 1e-9).contains(&phi), "{phi}");
+        assert!((row[1] - 2.0 * phi.cos()).abs() < 1e-12 && (row[2] - 2.0 * phi.sin()).abs() < 1e-12, "{row:?}");
+        assert!((row[3] - 2.0 * phi).abs() < 1e-12, "{row:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -568,8 +568,14 @@ pub(crate) fn singular_ratio_at<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> f64 {
 }
 
 /// The smallest and largest singular values of `a` with its rows over `rows` (the equations'
-/// magnitudes; none where `rows` is empty) and each column over its largest entry.
+/// magnitudes; none where `rows` is empty) and each column over its largest entry. A matrix of
+/// no rows or no columns (a mechanism without unknowns: its Jacobian is 0 x 0) has no singular
+/// direction: `(1, 1)`, where the SVD panicked ("Cannot compute the SVD of an empty matrix",
+/// `kinloop trace` of a declaration of outputs alone).
 pub(crate) fn singular_range(mut a: DMatrix<f64>, rows: &[f64]) -> (f64, f64) {
+    if a.is_empty() {
+        return (1.0, 1.0);
+    }
     for (e, &row) in rows.iter().enumerate() {
         a.row_mut(e).unscale_mut(if row > 0.0 && row.is_finite() { row } else { 1.0 });
     }

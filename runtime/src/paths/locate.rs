@@ -26,6 +26,10 @@ use nalgebra::{DMatrix, DVector};
 /// (the input cannot go on); where both are singular branches cross.
 fn augmented_full_rank<K: Kernel>(m: &K, path: &Path<X<K>>, p: &CurvePoint<Q<K>>) -> bool {
     let n = m.dims().n();
+    // No unknowns: no rows, rank 0 is full (and an SVD of the empty matrix panics).
+    if n == 0 {
+        return true;
+    }
     let jac = m.jacobian(&path.at_sigma(p.sigma), &p.q);
     let fs = f_sigma(&jac, path, n);
     let mut a = DMatrix::zeros(n, n + 1);
