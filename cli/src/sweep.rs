@@ -82,6 +82,18 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         },
         None => None,
     };
+    // The second sample too, where the first solved: a sweep whose input's doubles are too
+    // coarse for its steps (`--from 1e17`) fails at its first step, a usage error said before
+    // anything is written (it wrote the header and the first row, then failed with exit code 2).
+    let second = match &first {
+        Some(Ok(_)) if req.samples > 1 => match sweep.next_ref() {
+            Some(Err(e @ Error::InputTooCoarse { .. })) => {
+                return Err(solve_failed(&name, e, &kinds[..ni], req.deg));
+            }
+            state => Some(state.map(|r| r.map(|k| k.table_row()))),
+        },
+        _ => None,
+    };
     // Created before the rest of the sweep runs: a path that cannot be written stops before
     // any output.
     let events_file = output::created(req.events, "the events file")?;
@@ -90,10 +102,11 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // Buffered: a row is a write of its own, where standard output would pass each line on by
     // itself.
     let out = std::io::BufWriter::new(std::io::stdout().lock());
-    let mut pending = Some(first);
+    // The states solved already, the first last (taken first).
+    let mut pending: Vec<_> = second.into_iter().chain([first]).collect();
     let next = || {
-        let state = match pending.take() {
-            Some(first) => first,
+        let state = match pending.pop() {
+            Some(solved) => solved,
             None => sweep.next_ref().map(|r| r.map(|k| k.table_row())),
         };
         bar.inc(1);

@@ -940,6 +940,13 @@ fn an_input_too_coarse_is_a_usage_error_in_the_units_given() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     // In radians the range lies farther out (1e17 rad): doubles 16 apart.
     assert!(err.contains("is a double 16 apart"), "{err}");
+    // A usage error before anything is written: the header and the first row were, and an
+    // `--events` file was made.
+    assert!(out.stdout.is_empty(), "{}", String::from_utf8_lossy(&out.stdout));
+    let events = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("coarse-events-{}.csv", std::process::id()));
+    let out = kinloop(&[&args[..], &["--samples", "3", "--events", events.to_str().unwrap()]].concat());
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.stdout.is_empty() && !events.exists());
 }
 
 /// A file to write that is the declaration read (by its own path, a symbolic link or a hard
