@@ -12,7 +12,8 @@ pub fn structure(model: &Model) -> String {
         .iter()
         .zip(model.param_values())
         .map(|(p, v)| match v {
-            Some(v) => format!("{p} = {v}"),
+            // As numbers are written elsewhere: `{v}` wrote 1e308 in 309 digits, 1e-300 in 301.
+            Some(v) => format!("{p} = {}", kinloop_runtime::Number(*v)),
             None => format!("{p} (no value)"),
         })
         .collect();

@@ -1064,3 +1064,14 @@ fn a_singular_start_below_no_threshold_says_what_found_it() {
         assert!(err.contains(says), "{pivot}: `{says}` missing: {err}");
     }
 }
+
+/// `check` writes the parameters' values as numbers are written elsewhere: `--params
+/// r=1e-300,l=1e308` were written in some three hundred digits each.
+#[test]
+fn check_writes_huge_and_tiny_parameters_briefly() {
+    let out =
+        kinloop(&["check", &shipped("engine.kl"), "--params", "r=1e-300,l=1e308,e=123456789012345678901234567890"]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(report.contains("parameters: r = 1e-300, l = 1e308, e = 1.2345678901234568e29, m_crank = 1.2"), "{report}");
+}
