@@ -10,7 +10,7 @@ use crate::solve::{degrees, in_units, model_inputs, named, parse_inputs};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
-use kinloop_runtime::{Error, QuantityKind};
+use kinloop_runtime::{Error, Number, QuantityKind};
 use kinloop_viz::draw::{Animation, DefaultDrawing, DrawError, MAX_GRID_CELLS};
 use kinloop_viz::html::{HtmlConfig, HtmlError, html_grid_of, html_of};
 use std::io::Write;
@@ -136,8 +136,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     for (k, e) in motion.events.iter().enumerate() {
         let at: Vec<String> = (motion.inputs.iter().zip(&e.pose.x).zip(&kinds))
             .map(|((n, v), k)| match req.deg && *k == QuantityKind::Angle {
-                true => format!("{n} = {} deg", v.to_degrees()),
-                false => format!("{n} = {v}"),
+                // As `sweep` writes an event's inputs: `{v}` wrote an input of 3e200 in 201 digits.
+                true => format!("{n} = {} deg", Number(degrees(*v))),
+                false => format!("{n} = {}", Number(*v)),
             })
             .collect();
         let what = event_label(k, motion.events.len(), motion.stopped);

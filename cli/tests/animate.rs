@@ -489,3 +489,33 @@ fn a_write_that_fails_part_way_leaves_no_file() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("cannot write"));
     assert!(!svg.exists(), "a file of {:?} bytes was left", std::fs::metadata(&svg).map(|m| m.len()));
 }
+
+/// A sweep that stops at a limit position far out (a slider-driven linkage in units of 1e200)
+/// names the input as `sweep` does, `2.9999999999999996e200`, not in 201 digits.
+#[test]
+fn a_stop_far_out_is_named_briefly() {
+    let dir = out("far_out");
+    std::fs::create_dir_all(&dir).expect("a directory");
+    let file = dir.join("edger.kl");
+    std::fs::write(
+        &file,
+        "pub struct Edger {\n    params l3 = 1e200, l5 = 2e200, alpha = 0.3;\n    input s;\n    unknowns phi1 = 0.5, phi3 = \
+         2.0;\n    loop c: s @ phi1 + l3 @ phi3 == l5 @ alpha;\n}\n",
+    )
+    .expect("the declaration");
+    let path = out("far_out.svg");
+    let o = kinloop(&[
+        "animate",
+        file.to_str().unwrap(),
+        "--from",
+        "1.5e200",
+        "--to",
+        "3.5e200",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    ok(&o);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("the sweep stopped at limit position at s = 2.9999999999999996e200\n"), "{stderr}");
+    assert!(!stderr.contains("0000000000"), "{stderr}");
+}
