@@ -1075,3 +1075,21 @@ fn check_writes_huge_and_tiny_parameters_briefly() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(report.contains("parameters: r = 1e-300, l = 1e308, e = 1.2345678901234568e29, m_crank = 1.2"), "{report}");
 }
+
+/// A guess too many turns out says how many in a few digits: `beta = 1e308` was "159154943...
+/// turns out" in 308 digits; a billion radians keeps its whole count.
+#[test]
+fn a_guess_too_many_turns_out_counts_them_briefly() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("far-guess-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a directory");
+    let text = std::fs::read_to_string(shipped("four_bar.kl")).expect("the four-bar");
+    for (guess, says) in [("1e308", "is 1e308 rad, 1.592e307 turns out,"), ("1e10", ", 1591549431 turns out,")] {
+        let file = dir.join(format!("guess_{guess}.kl"));
+        std::fs::write(&file, text.replacen("beta = 0.5", &format!("beta = {guess}"), 1)).expect("write");
+        let out = kinloop(&["solve", file.to_str().unwrap(), "--params", "a=1,b=3,c=2.5,d=3.2", "--at", "1"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(err.contains(says) && !err.contains("0000000000"), "{guess}: `{says}` missing: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -262,9 +262,10 @@ pub enum Error {
     /// wrong answer by that much. Typical of an angle carried over millions of turns; reduce it
     /// by whole turns.
     #[error(
-        "the angle `{name}` is {value:e} rad, {turns:.0} turns out, where doubles are \
+        "the angle `{name}` is {value:e} rad, {} turns out, where doubles are \
          {spacing:e} rad apart: too coarse for the residual tolerance {at}; give its guess on a \
-         nearer turn (whole turns off, e.g. `q.rem_euclid(TAU)`)"
+         nearer turn (whole turns off, e.g. `q.rem_euclid(TAU)`)",
+        whole_turns(*turns)
     )]
     TooManyTurns {
         /// The unknown.
@@ -446,6 +447,12 @@ fn underflow_cause(magnitude: f64, least: f64) -> String {
 /// Why a position is singular, with the numbers as they are: a pivot ratio below the tolerance,
 /// or a root that Newton reaches only linearly (each step about half the last, as where the
 /// Jacobian is singular at the root) while the ratio has not yet fallen below the tolerance.
+/// A count of turns in a message: whole, in digits up to 1e15 (`159154943` turns out), in `e`
+/// notation beyond (`{turns:.0}` wrote a guess of 1e308 rad as 308 digits of turns).
+fn whole_turns(turns: f64) -> String {
+    if turns.abs() < 1e15 { format!("{turns:.0}") } else { format!("{turns:.3e}") }
+}
+
 /// Why a sweep's start is singular ([`Error::SingularStart`]): its pivot ratio below the sweep's
 /// `singular_pivot`, or else the solve of its first state found it singular (below
 /// `NewtonConfig::singular_tol`, or reached only linearly), whatever `singular_pivot` is: with
