@@ -444,9 +444,6 @@ fn underflow_cause(magnitude: f64, least: f64) -> String {
     }
 }
 
-/// Why a position is singular, with the numbers as they are: a pivot ratio below the tolerance,
-/// or a root that Newton reaches only linearly (each step about half the last, as where the
-/// Jacobian is singular at the root) while the ratio has not yet fallen below the tolerance.
 /// A count of turns in a message: whole, in digits up to 1e15 (`159154943` turns out), in `e`
 /// notation beyond (`{turns:.0}` wrote a guess of 1e308 rad as 308 digits of turns).
 fn whole_turns(turns: f64) -> String {
@@ -468,6 +465,9 @@ fn start_cause(pivot_ratio: f64, singular_pivot: f64) -> String {
     }
 }
 
+/// Why a position is singular, with the numbers as they are: a pivot ratio below the tolerance,
+/// or a root that Newton reaches only linearly (each step about half the last, as where the
+/// Jacobian is singular at the root) while the ratio has not yet fallen below the tolerance.
 fn singular_cause(pivot_ratio: f64, tolerance: f64) -> String {
     if pivot_ratio < tolerance {
         format!("the Jacobian's pivot ratio is {pivot_ratio:e} (below the tolerance {tolerance:e})")
