@@ -452,7 +452,10 @@ pub fn trace_curve_of<K: Kernel>(
             (away && back <= ds && (before.dsigma() * start_dsigma >= 0.0 || p.dsigma() * start_dsigma >= 0.0))
                 .then(|| start_on_step(&before, &p, &metric, &start_z, &turns, close_slack))
                 .flatten();
+        // A limit position beyond the segment's end is not on the curve traced (the step that
+        // leaves the segment passed one 2e-3 of the input past `to`, listed where no point was).
         if let Some(f) = fold
+            && !left_path(&f)
             && closing.is_none_or(|at| !singular_start && along_step(&before, &p, &metric, &f.z(&metric)) < at)
         {
             out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
@@ -479,8 +482,8 @@ pub fn trace_curve_of<K: Kernel>(
     // positions (a Watt six-bar's dyad folding on either side of its four-bar's change point)
     // passes the branch point again, along the other curve through it, a crossing of its own
     // (466 of 2,000 random such six-bars lost it when the input alone was compared). Measured
-    // over random near-kites and six-bars, the wandering's events lay at most 2.5 steps of
-    // arclength apart, a second pass at least 459.
+    // over random near-kites and six-bars, the wandering's events lay at most 4.1 steps of
+    // arclength apart, a second pass at least 459 (see `BESIDE_WALK`).
     let beside = |(a, wa): (&Event, f64), (b, wb): (&Event, f64)| {
         (a.tau - b.tau).abs() * path.len / metric.sigma <= 1e-4 * ds && (wa - wb).abs() <= BESIDE_WALK * ds
     };
@@ -608,8 +611,11 @@ fn away_from_branch_points<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> bool {
 }
 
 /// How far apart along the trace, in steps of [`TraceConfig::ds`], two events at the same curve
-/// point are the corrector's wandering beside a branch point and not two passes through it.
-const BESIDE_WALK: f64 = 4.0;
+/// point are the corrector's wandering beside a branch point and not two passes through it: the
+/// wandering's events lay at most 2.5 steps apart over the random near-kites and six-bars first
+/// measured, and 4.1 in one of about 12,000 near-kites of a wider run (listed as two crossings
+/// 5.6e-9 of the input apart, where the bound was 4); a second pass at least 459.
+const BESIDE_WALK: f64 = 16.0;
 
 /// The distance between the scaled points `z` and `z0` with each coordinate's difference
 /// reduced by whole multiples of its turn in `turns` (where it is not 0).
