@@ -537,9 +537,19 @@ fn a_change_point_passed_twice_is_listed_twice() {
 /// A four-bar whose limit position lies 2.3e-3 of the input past the end of the segment traced
 /// (`to`): the step that leaves the segment passes it with the longest step, and it was listed,
 /// a limit position on no point of the curve traced. With `to` past it, it is listed, where
-/// coupler and rocker lie in line.
+/// coupler and rocker lie in line. Another's lies 9e-4 past the segment's other end, and the
+/// longest step passes it and comes back into the segment: the trace goes on, and lists it.
 #[test]
 fn a_limit_position_past_the_segments_end_is_not_listed() {
+    let m = FourBar { a: 1.1092378867210653, b: 2.2886841306697563, c: 1.5444704921117398, d: 1.0299213853426523 };
+    let start = -2.4337946450957926;
+    let limit = limit_angles(&m)[0] - TAU;
+    assert!(limit < start - PI && limit > start - PI - 1e-3, "{limit}");
+    let g = m.position(start, &m.guess(start)).unwrap().0;
+    let t = m.trace_curve(start, start + PI, &g, &TraceConfig::default().with_ds(TraceConfig::MAX_DS)).unwrap();
+    assert!(t.closed, "{t:?}");
+    assert!(t.folds.iter().any(|f| (f.x[0] - limit).abs() <= tol::LOCATED), "{:?}", t.folds);
+
     let m = FourBar { a: 1.3697209244230626, b: 2.548996946419844, c: 0.9467509258072133, d: 1.5930004647101867 };
     let start = 2.0054319428049556;
     let limit = TAU - limit_angles(&m)[0];

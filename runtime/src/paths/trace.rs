@@ -452,10 +452,11 @@ pub fn trace_curve_of<K: Kernel>(
             (away && back <= ds && (before.dsigma() * start_dsigma >= 0.0 || p.dsigma() * start_dsigma >= 0.0))
                 .then(|| start_on_step(&before, &p, &metric, &start_z, &turns, close_slack))
                 .flatten();
-        // A limit position beyond the segment's end is not on the curve traced (the step that
-        // leaves the segment passed one 2e-3 of the input past `to`, listed where no point was).
+        // A limit position beyond the segment's end, passed by the step that leaves the segment,
+        // is not on the curve traced (one 2e-3 of the input past `to` was listed, where no point
+        // was). One a step passes and comes back into the segment from is: the trace goes on.
         if let Some(f) = fold
-            && !left_path(&f)
+            && !(left_path(&f) && left_path(&p))
             && closing.is_none_or(|at| !singular_start && along_step(&before, &p, &metric, &f.z(&metric)) < at)
         {
             out.folds.push(event_at(EventKind::LimitPosition, &path, &f, None));
