@@ -171,8 +171,9 @@ proptest! {
         prop_assert!(t.crossings.is_empty() && t.kinks.is_empty(), "{:?}", t);
         // It closes (its angles within whole turns: a crank-rocker driven by its rocker comes
         // back with its crank a turn on) or leaves the input's segment, long before the most
-        // points (a few hundred to a thousand at the default step).
-        prop_assert!(!t.truncated && t.points.len() < 2000, "{} points", t.points.len());
+        // points (a few hundred to a thousand at the default step, up to 2,271 over some 5,000
+        // random four-bars of a wider run).
+        prop_assert!(!t.truncated && t.points.len() < 4000, "{} points", t.points.len());
         let limits = limit_angles(&m);
         for fold in &t.folds {
             let near = limits.iter().map(|&l| turn_distance(fold.x[0], l)).fold(f64::INFINITY, f64::min);
