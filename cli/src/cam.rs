@@ -334,9 +334,7 @@ fn follower_options(fa: &FollowerArgs) -> String {
     given.join(", ")
 }
 
-/// `text` with each `sample K` followed by its input (`sample(K)`: `sample 77 (input 1.34)`),
-/// and its numbers written as the command writes them (an offset of `1e308` was three hundred
-/// digits).
+/// `text` with each `sample K` followed by its input (`sample(K)`: `sample 77 (input 1.34)`).
 fn with_inputs(text: &str, sample: &dyn Fn(usize) -> String) -> String {
     let mut out = String::new();
     let mut rest = text;
@@ -349,31 +347,6 @@ fn with_inputs(text: &str, sample: &dyn Fn(usize) -> String) -> String {
             _ => out += &rest[at..at + "sample ".len() + digits],
         }
         rest = &after[digits..];
-    }
-    out += rest;
-    short_numbers(&out)
-}
-
-/// `text` with each long number in positional notation (more than 24 characters: `{}` of a
-/// huge or tiny f64, `1000...0` or `0.000...1`) written as numbers are elsewhere (`1e308`).
-fn short_numbers(text: &str) -> String {
-    let mut out = String::new();
-    let mut rest = text;
-    while let Some(start) = rest.find(|c: char| c.is_ascii_digit() || c == '-') {
-        let (before, from) = rest.split_at(start);
-        out += before;
-        let sign = usize::from(from.starts_with('-'));
-        let len = sign + from[sign..].find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(from.len() - sign);
-        let word = &from[..len];
-        let alone = !before.ends_with(|c: char| c.is_alphanumeric() || c == '.' || c == '_')
-            && !from[len..].starts_with(|c: char| c.is_alphanumeric() || c == '_');
-        // A sentence's full stop after the number is kept.
-        let number = word.trim_end_matches('.');
-        match (len > 24 && alone, number.parse::<f64>()) {
-            (true, Ok(v)) => out += &(Number(v).to_string() + &word[number.len()..]),
-            _ => out += &word[..len.max(1)],
-        }
-        rest = &from[len.max(1)..];
     }
     out + rest
 }
@@ -769,23 +742,4 @@ fn draw(curves: &[(&str, Vec<[f64; 2]>)], name: &str) -> Result<String, Failed> 
             eprintln!("error: {name}: cannot draw the cam: {e}");
             Failed(exit::SOLVE_FAILED)
         })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::short_numbers;
-
-    /// Long numbers in positional notation (a huge or tiny f64's `{}`) are written short,
-    /// whatever is around them; short ones, names and indices are left as they are.
-    #[test]
-    fn long_numbers_are_written_short() {
-        let huge = format!("{}", 1e308);
-        let tiny = format!("{}", -1e-300);
-        assert_eq!(short_numbers(&format!("the offset {huge} and")), "the offset 1e308 and");
-        assert_eq!(short_numbers(&format!("({tiny} past it)")), "(-1e-300 past it)");
-        assert_eq!(short_numbers(&format!("at {huge}.")), "at 1e308.");
-        let kept = "sample 77 (input 1.34) at [-1.2731580795675796, 129.98842096021622], x2 e-5 a-b";
-        assert_eq!(short_numbers(kept), kept);
-        assert_eq!(short_numbers("é 3 ü -"), "é 3 ü -");
-    }
 }

@@ -68,6 +68,7 @@ mod plane;
 pub use flat_face::{FlatFace, FlatFaceProfile, flat_face_profile};
 
 use crate::error::Error;
+use crate::number::Number;
 use plane::{apply, cross, dot, largest, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
 
 /// One sample of the follower's motion: the cam's angle and the follower point's position, each
@@ -165,7 +166,7 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         return bad("no samples".into());
     }
     if !(roller >= 0.0 && roller.is_finite()) {
-        return bad(format!("the roller's radius {roller} must be finite and not negative"));
+        return bad(format!("the roller's radius {} must be finite and not negative", Number(roller)));
     }
     if !pivot.iter().all(|v| v.is_finite()) {
         return bad(format!("the pivot {pivot:?} is not finite"));

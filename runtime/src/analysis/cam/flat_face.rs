@@ -4,6 +4,7 @@
 use super::FollowerSample;
 use super::plane::{apply, cross, dot, largest, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
 use crate::error::Error;
+use crate::number::Number;
 use std::f64::consts::FRAC_PI_2;
 
 /// Where a flat-faced follower's face is, and how the follower moves: along a guide or about a
@@ -91,7 +92,7 @@ impl FlatFaceProfile {
                 "flat_face_profile: the profile is not convex at {} samples (from sample {a} to sample {b}; radius of \
                  curvature {} at sample {a}): a flat face cannot follow the law there",
                 bad.len(),
-                self.radius[a]
+                Number(self.radius[a])
             ))),
             _ => Ok(()),
         }
@@ -158,12 +159,17 @@ pub fn flat_face_profile(
     match face {
         FlatFace::Translating { tilt } if tilt.is_nan() || tilt.abs() >= FRAC_PI_2 => {
             return bad(format!(
-                "the face's tilt {tilt} must be finite and less than a quarter turn either way (the face square to \
-                 the guide at 0)"
+                "the face's tilt {} must be finite and less than a quarter turn either way (the face square to \
+                 the guide at 0)",
+                Number(tilt)
             ));
         }
         FlatFace::Rocking { pivot: a, offset, tilt } if ![a[0], a[1], offset, tilt].iter().all(|v| v.is_finite()) => {
-            return bad(format!("the rocker's pivot {a:?}, the face's offset {offset} and tilt {tilt} must be finite"));
+            return bad(format!(
+                "the rocker's pivot {a:?}, the face's offset {} and tilt {} must be finite",
+                Number(offset),
+                Number(tilt)
+            ));
         }
         _ => {}
     }
@@ -222,8 +228,9 @@ pub fn flat_face_profile(
                 if l2 == 0.0 {
                     return bad(format!(
                         "at sample {k} the arm from the rocker's pivot to the follower's point {p:?} is too short \
-                         beside the face's offset {offset} and the pivots' distance (their ratio is beyond what f64 \
-                         computes with)"
+                         beside the face's offset {} and the pivots' distance (their ratio is beyond what f64 \
+                         computes with)",
+                        Number(offset)
                     ));
                 }
                 // The arm's angle gamma = atan2(arm): gamma' = (arm x arm') / |arm|^2, and
@@ -254,7 +261,7 @@ pub fn flat_face_profile(
             return bad(format!(
                 "at sample {k} the face passes through the cam's pivot or beyond it ({} past it): the cam must lie \
                  on its pivot's side of the face at every sample",
-                -h * unit
+                Number(-h * unit)
             ));
         }
         let nrm = scale(side, quarter(t));
@@ -266,8 +273,9 @@ pub fn flat_face_profile(
         let (w, w1) = (db - dtheta, d2b - d2theta);
         if w == 0.0 {
             return bad(format!(
-                "at sample {k} the face does not turn relative to the cam (its angle's rate {db} is the cam's): it \
-                 touches no profile there"
+                "at sample {k} the face does not turn relative to the cam (its angle's rate {} is the cam's): it \
+                 touches no profile there",
+                Number(db)
             ));
         }
         if winding == 0.0 {
@@ -295,7 +303,8 @@ pub fn flat_face_profile(
         let contact = apply(rotate(-theta), scale(unit, c));
         if !(radius.is_finite() && contact.iter().all(|v| v.is_finite())) {
             return bad(format!(
-                "at sample {k} the face barely turns relative to the cam (rate {w}): its contact is out of reach"
+                "at sample {k} the face barely turns relative to the cam (rate {}): its contact is out of reach",
+                Number(w)
             ));
         }
         out.profile.push(contact);
