@@ -353,20 +353,12 @@ fn failed(name: &str, e: &dyn std::fmt::Display) -> Failed {
 
 /// Writes `text` to `out`, created only now: a failed sweep or drawing leaves no file behind,
 /// and neither does a write that fails part way (a full disk, a file size limit): a regular
-/// file is removed again rather than left cut short, an SVG or page that does not read.
+/// file is removed again rather than left cut short ([`OutFile::write`](crate::output::OutFile::write)),
+/// an SVG or page that does not read.
 fn write_out(out: &Path, text: &str) -> Result<(), Failed> {
-    let mut file = std::fs::File::create(out).map_err(|e| {
-        eprintln!("error: cannot create {}: {e}", out.display());
-        Failed(exit::CANT_CREATE)
-    })?;
-    file.write_all(text.as_bytes()).and_then(|()| file.flush()).map_err(|e| {
-        eprintln!("error: cannot write {}: {e}", out.display());
-        let regular = file.metadata().is_ok_and(|m| m.is_file());
-        drop(file);
-        if regular {
-            let _ = std::fs::remove_file(out);
-        }
-        Failed(exit::IO_ERR)
+    let what = format!("the animation {}", out.display());
+    crate::output::created(Some(out), "the animation")?.map_or(Ok(()), |file| {
+        file.write(&what, |mut file| file.write_all(text.as_bytes()).and_then(|()| file.flush()))
     })
 }
 

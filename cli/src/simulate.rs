@@ -222,16 +222,17 @@ fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
     let need = if t > 0.0 { steps as f64 * (t_end / t) } else { f64::INFINITY };
     // More steps than any count `--max-steps` takes (`--time 1e308`): raising it cannot reach
     // the end, and the message said to.
-    let (pace, advice) = match need {
-        n if n.is_finite() && n <= usize::MAX as f64 => (
-            format!("; at that pace the whole span needs about {} steps", significant(n)),
-            "raise --max-steps, or simulate a shorter --time".to_string(),
-        ),
-        n if n.is_finite() => (
-            format!("; at that pace the whole span needs about {} steps", significant(n)),
-            format!("more than any --max-steps (at most {}): simulate a shorter --time", usize::MAX),
-        ),
-        _ => (String::new(), "simulate a shorter --time (no --max-steps reaches it at that pace)".to_string()),
+    let pace = if need.is_finite() {
+        format!("; at that pace the whole span needs about {} steps", significant(need))
+    } else {
+        String::new()
+    };
+    let advice = if need <= usize::MAX as f64 {
+        "raise --max-steps, or simulate a shorter --time".to_string()
+    } else if need.is_finite() {
+        format!("more than any --max-steps (at most {}): simulate a shorter --time", usize::MAX)
+    } else {
+        "simulate a shorter --time (no --max-steps reaches it at that pace)".to_string()
     };
     format!(
         "{name}: the simulation made its budget of {} (--max-steps) and reached only t = {} of \

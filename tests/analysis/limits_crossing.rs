@@ -27,6 +27,9 @@ kinloop::mechanism! {
     /// of the crank (scale-free) plus `0.05 (phi - pi)^3`, whose reversal ends at the joint's
     /// minimum at the crossing itself (the cubic's slope vanishes there); and `lag`, the
     /// coupler's angle plus `0.3 phi`, whose reversal runs from before the crossing to after it.
+    /// And two outputs of the crank's angle alone that stand still over stretches: `still` from
+    /// 0 to 2, from 3 to 4 (across the change point at `pi`) and from 5 on; `until` up to the
+    /// crossing itself, moving after it.
     pub struct FourBarDip {
         params a, b, c, d;
         input phi;
@@ -35,18 +38,6 @@ kinloop::mechanism! {
         point pc = a @ phi + b @ beta;
         output dip = (a * cos(phi) + b * cos(beta)) / a + 0.05 * (phi - pi) * (phi - pi) * (phi - pi);
         output lag = beta + 0.3 * phi;
-    }
-}
-
-kinloop::mechanism! {
-    /// The fixtures' four-bar with two outputs of the crank's angle alone that stand still over
-    /// stretches: `still` from 0 to 2, from 3 to 4 (across the change point at `pi`) and from 5
-    /// on; `until` up to the crossing itself, moving after it.
-    pub struct FourBarStill {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
         output still = clamp(phi - 2, 0, 1) + clamp(phi - 4, 0, 1);
         output until = clamp(phi - pi, 0, 1);
     }
@@ -300,17 +291,17 @@ fn transmission_angle_across_a_change_point() {
 fn rests_across_a_change_point() {
     let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
     for scale in [1.0, 1e-3, 1e3] {
-        let m = FourBarStill { a: scale, b: 2.0 * scale, c: 2.5 * scale, d: 3.5 * scale };
+        let m = FourBarDip { a: scale, b: 2.0 * scale, c: 2.5 * scale, d: 3.5 * scale };
         for samples in [5, 10, 73, 360] {
             let what = format!("scale {scale}, {samples} samples");
             let run = Sampled::sweep_with(&m, 0.0, TO, samples, m.guess_flat(&[0.0]), cfg).unwrap();
-            let still = run.rests(FourBarStill::COL.still).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let still = run.rests(FourBarDip::COL.still).unwrap_or_else(|e| panic!("{what}: {e}"));
             let ends: Vec<(f64, f64)> = still.iter().map(|r| (r.start.x, r.end.x)).collect();
             assert_eq!(ends.len(), 3, "{what}: {ends:?}");
             for ((start, end), (a, b)) in ends.iter().zip([(0.0, 2.0), (3.0, 4.0), (5.0, TO)]) {
                 assert!((start - a).abs() < tol::ULPS && (end - b).abs() < tol::ULPS, "{what}: {ends:?}");
             }
-            let until = run.rests(FourBarStill::COL.until).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let until = run.rests(FourBarDip::COL.until).unwrap_or_else(|e| panic!("{what}: {e}"));
             assert!(until.len() == 2 && until[0].start.x == 0.0, "{what}: {until:?}");
             assert!(until[0].end.x <= PI && PI - until[0].end.x < 1e-5, "{what}: {until:?}");
             assert!((until[1].start.x - (PI + 1.0)).abs() < tol::ULPS && until[1].end.x == TO, "{what}: {until:?}");
