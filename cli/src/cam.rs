@@ -35,17 +35,17 @@ pub struct FollowerArgs {
     #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
     pub pivot: Option<String>,
     /// The roller's radius (0: a knife edge, the default).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::numbers::number)]
     pub roller: Option<f64>,
     /// A flat-faced follower instead of a roller: its face square to the guide through the
     /// follower's point (`--guide`), or parallel to the arm from the pivot to the point at
     /// `--face-offset` from the pivot (`--rocker`), turned by ANGLE (0 if not given; degrees
     /// with `--deg`); the profile is the face's envelope.
-    #[arg(long, value_name = "ANGLE", num_args = 0..=1, default_missing_value = "0", allow_negative_numbers = true)]
+    #[arg(long, value_name = "ANGLE", num_args = 0..=1, default_missing_value = "0", allow_negative_numbers = true, value_parser = crate::numbers::number)]
     pub flat: Option<f64>,
     /// A rocking flat face's distance from the rocker's pivot, positive on the left of the
     /// face's direction (0: the face through the pivot).
-    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    #[arg(long, value_name = "D", allow_hyphen_values = true, value_parser = crate::numbers::number)]
     pub face_offset: Option<f64>,
     /// The cam turns clockwise as the input grows (counter-clockwise otherwise).
     #[arg(long)]

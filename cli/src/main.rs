@@ -53,6 +53,7 @@ mod csv_rows;
 mod dynamics;
 mod exit;
 mod extremes;
+mod numbers;
 mod output;
 mod params;
 mod progress;
@@ -100,7 +101,7 @@ struct Branch {
     /// a sweep that stops there says. A lower value also weakens the test that finds change
     /// points (where two branches cross): a sweep may then pass one unnoticed and go on on the
     /// other branch, so lower it only over a range that holds none
-    #[arg(long, value_name = "RATIO", allow_hyphen_values = true)]
+    #[arg(long, value_name = "RATIO", allow_hyphen_values = true, value_parser = crate::numbers::number)]
     singular_pivot: Option<f64>,
     /// At a singular crossing (a change point, where two branches cross) a sweep records it and
     /// goes on along the smooth continuation of its curve, as a trace does, instead of stopping
@@ -218,7 +219,7 @@ enum Command {
         to: String,
         /// Arclength between points, in radians of an angle and in units of the mechanism's
         /// size of a length (from 1e-9 to 1).
-        #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.01, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         ds: f64,
         /// The most points written (at least 1, at most 10000000).
         #[arg(long, default_value_t = 100_000, allow_hyphen_values = true, value_parser = count::count)]
@@ -243,17 +244,17 @@ enum Command {
         #[command(flatten)]
         branch: Branch,
         /// The constant input speed, in rad (or degrees with `--deg`) per time unit.
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         speed: f64,
         /// The input angle the turn starts at.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         start: f64,
         /// Equally spaced angles per turn (at least 8, at most 10000000).
         #[arg(long, default_value_t = 360, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// The coefficient of speed fluctuation `(omega_max - omega_min) / omega_mean` the
         /// flywheel is sized for (from 1e-6 to below 2).
-        #[arg(long, default_value_t = 0.02, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.02, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         delta: f64,
         /// The frame point the shaking moments are taken about, `x,y` (the origin otherwise).
         #[arg(long, value_name = "X,Y", allow_hyphen_values = true)]
@@ -276,19 +277,19 @@ enum Command {
         #[command(flatten)]
         branch: Branch,
         /// The input speed at time 0, in rad (or degrees with `--deg`) per time unit.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         speed: f64,
         /// The input angle at time 0.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         start: f64,
         /// The time simulated (positive).
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         time: f64,
         /// The constant driving torque on the input.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         torque: f64,
         /// The moment of inertia of a flywheel on the input shaft.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         flywheel: f64,
         /// Equally spaced times written, both ends included (at least 2, at most 10000000).
         #[arg(long, default_value_t = 101, allow_hyphen_values = true, value_parser = count::count)]
@@ -322,7 +323,7 @@ enum Command {
         #[command(flatten)]
         follower: cam::FollowerArgs,
         /// The cam shaft's angle at the first sample.
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         start: f64,
         /// Samples over the turn, equally spaced, both ends included (at least 3, at most
         /// 10000000).
@@ -474,7 +475,7 @@ enum Command {
         /// path's in its length unit, a function's in its output's: degrees for an angle with
         /// `--deg`): a candidate that misses a target by more is not valid (defect `miss`).
         /// Without it the best fit is valid however far it misses.
-        #[arg(long, value_name = "ERROR", allow_hyphen_values = true)]
+        #[arg(long, value_name = "ERROR", allow_hyphen_values = true, value_parser = crate::numbers::number)]
         max_error: Option<f64>,
     },
 }

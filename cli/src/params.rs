@@ -1,5 +1,6 @@
 //! `--params a=1.2,b=3`: parameter values overriding the declared defaults.
 
+use crate::numbers::{is_zero_text, underflow};
 use crate::{Failed, exit};
 use kinloop_model::Model;
 
@@ -27,10 +28,7 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
             return Err(Failed(exit::USAGE));
         }
         if v == 0.0 && !is_zero_text(value) {
-            eprintln!(
-                "error: the value of `{name}` in --params, `{value}`, is too small for a 64-bit float and would be 0: \
-                 give 0 if 0 is meant, or express the model in other units"
-            );
+            eprintln!("error: the value of `{name}` in --params: {}", underflow(value));
             return Err(Failed(exit::USAGE));
         }
         if !model.set_param(name, v) {
@@ -43,13 +41,6 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
         }
     }
     Ok(())
-}
-
-/// Whether the number `text` (one that parses) is written as zero: no digit but 0 before its
-/// exponent. `1e-400` is not, though it parses to 0 (it underflows), as `1e400` overflows.
-pub(crate) fn is_zero_text(text: &str) -> bool {
-    let mantissa = text.split(['e', 'E']).next().unwrap_or(text);
-    !mantissa.chars().any(|c| c.is_ascii_digit() && c != '0')
 }
 
 /// Every parameter of `model` has a value: a default, or one given. Otherwise a usage error
@@ -73,19 +64,4 @@ pub fn require_values(model: &Model) -> Result<(), Failed> {
         "{}: {what} {names} {verb} no value (the declaration gives {them} no default): give {them} with --params {give}",
         model.name()
     )))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::is_zero_text;
-
-    #[test]
-    fn zero_is_told_from_an_underflow() {
-        for zero in ["0", "-0", "0.000", "+0e10", "0E-400", ".0"] {
-            assert!(is_zero_text(zero), "{zero}");
-        }
-        for not in ["1e-400", "-2.5E-999", "0.0001e-400", "10e-401"] {
-            assert!(!is_zero_text(not), "{not}");
-        }
-    }
 }

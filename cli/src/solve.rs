@@ -1,5 +1,6 @@
 //! `kinloop solve`: states at given inputs as CSV, with units in the header.
 
+use crate::numbers::{is_zero_text, number, underflow};
 use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
 use kinloop_runtime::{Error, EventKind, NewtonConfig, Number, QuantityKind, Table};
@@ -228,10 +229,13 @@ pub fn radians_of(v: f64, given: &str) -> Result<f64, Failed> {
 
 /// A point `x,y` of two finite numbers, given to the option `option` (`--about`, `--pivot`).
 pub fn point(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
-    let v: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
-    match v.as_deref() {
-        Ok(&[x, y]) if x.is_finite() && y.is_finite() => Ok([x, y]),
-        _ => Err(exit::usage(format!("{option} {spec} is not a point `x,y` of two finite numbers"))),
+    let not_a_point = format!("{option} {spec} is not a point `x,y` of two finite numbers");
+    match spec.split(',').map(number).collect::<Result<Vec<f64>, _>>() {
+        Ok(v) => match v[..] {
+            [x, y] if x.is_finite() && y.is_finite() => Ok([x, y]),
+            _ => Err(exit::usage(not_a_point)),
+        },
+        Err(e) => Err(exit::usage(format!("{not_a_point}: {e}"))),
     }
 }
 
@@ -240,11 +244,8 @@ pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Fai
     let x: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
     // A number too small for a double reads as 0: refused as it is in --params (`1e-400` was
     // taken as 0 without a word).
-    if let Some(v) = spec.split(',').map(str::trim).find(|v| v.parse() == Ok(0.0) && !crate::params::is_zero_text(v)) {
-        return Err(exit::usage(format!(
-            "{option} {spec}: `{v}` is too small for a 64-bit float and would be 0: give 0 if 0 is meant, or express \
-             the model in other units"
-        )));
+    if let Some(v) = spec.split(',').map(str::trim).find(|v| v.parse() == Ok(0.0) && !is_zero_text(v)) {
+        return Err(exit::usage(format!("{option} {spec}: {}", underflow(v))));
     }
     match x {
         Ok(x) if x.len() == ni && x.iter().all(|v| v.is_finite()) => Ok(x),

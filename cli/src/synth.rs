@@ -7,6 +7,7 @@
 //! given inputs) or pairs of a function (`input,output`). The ranked candidates are written as
 //! a table or as CSV, each with its defects.
 
+use crate::numbers::number;
 use crate::{Failed, exit, params, progress};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::paths::sweep::MAX_TURNS;
@@ -178,11 +179,14 @@ fn not_given_twice(design: &Design, params: Option<&str>) -> Result<(), Failed> 
 
 /// `lo..hi` as two finite numbers, lower first.
 fn bounds(spec: &str, what: &str) -> Result<(f64, f64), Failed> {
-    let parsed =
-        spec.split_once("..").and_then(|(a, b)| Some((a.trim().parse::<f64>().ok()?, b.trim().parse::<f64>().ok()?)));
-    match parsed {
-        Some((lo, hi)) if lo.is_finite() && hi.is_finite() && lo <= hi => Ok((lo, hi)),
-        _ => Err(exit::usage(format!("{what} `{spec}` is not `lo..hi` with finite lo <= hi"))),
+    let not_bounds = format!("{what} `{spec}` is not `lo..hi` with finite lo <= hi");
+    let Some((lo, hi)) = spec.split_once("..") else {
+        return Err(exit::usage(not_bounds));
+    };
+    match (number(lo), number(hi)) {
+        (Ok(lo), Ok(hi)) if lo.is_finite() && hi.is_finite() && lo <= hi => Ok((lo, hi)),
+        (Err(e), _) | (_, Err(e)) => Err(exit::usage(format!("{not_bounds}: {e}"))),
+        _ => Err(exit::usage(not_bounds)),
     }
 }
 

@@ -116,6 +116,24 @@ fn errors_have_carets_and_exit_codes() {
     assert_eq!(underflow.status.code(), Some(2), "{err}");
     assert!(err.contains("`1e-400` is too small for a 64-bit float"), "{err}");
     assert!(kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "0e-400"]).status.success());
+    // So in an option of one number or a point: a roller of radius 1e-400 was a knife edge, a
+    // speed of 1e-400 a machine at rest, without a word.
+    let cam = shipped("dwell_cam.kl");
+    let engine = shipped("engine.kl");
+    for (args, says) in [
+        (vec!["cam", &cam, "--point", "follower", "--guide", "0,1", "--roller", "1e-400"], "'--roller <ROLLER>'"),
+        (vec!["cam", &cam, "--point", "follower", "--guide", "0,1", "--roller", " 2e-999 "], "'--roller <ROLLER>'"),
+        (vec!["dynamics", &engine, "--speed", "1e-400"], "'--speed <SPEED>'"),
+        (vec!["dynamics", &engine, "--speed", "150", "--about", "1e-400,0"], "--about 1e-400,0 is not a point"),
+    ] {
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says) && err.contains("too small for a 64-bit float and would be 0"), "{args:?}: {err}");
+    }
+    let spaced =
+        kinloop(&["cam", &cam, "--point", "follower", "--guide", "0,1", "--roller", " 10 ", "--samples", "37"]);
+    assert!(spaced.status.success(), "{}", String::from_utf8_lossy(&spaced.stderr));
     // Out of reach: a crank longer than the rod leaves no assembly at some angle.
     let out_of_reach = kinloop(&["solve", &shipped("rhombic_drive.kl"), "--at", "1.5", "--params", "r_p=5"]);
     assert_eq!(out_of_reach.status.code(), Some(1), "{}", String::from_utf8_lossy(&out_of_reach.stdout));
@@ -555,7 +573,7 @@ fn a_parameter_that_underflows_is_a_usage_error() {
     let out = run("1e-400");
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("`e` in --params, `1e-400`, is too small for a 64-bit float and would be 0"), "{err}");
+    assert!(err.contains("`e` in --params: `1e-400` is too small for a 64-bit float and would be 0"), "{err}");
     assert!(run("0e-400").status.success());
 }
 
