@@ -328,6 +328,18 @@ fn a_crossing_passed_while_wandering_beside_it_is_listed_once() {
     traced_through_a_folded_change_point([a, b, b - eps, a - eps], -1.0, 6.158540854410354);
 }
 
+/// A near-kite whose trace listed its crossing where it stood beside the branch point, then
+/// stepped over it from the last point away from it (a step 13 of the trace's long): the walk
+/// to that second listing was counted past the step, 19 steps from the first, and the crossing
+/// was listed twice, 6e-9 of the input apart (found by a wider run of the random near-kites
+/// below). An event's walk is now taken where it is listed: 1.5e-5 steps apart.
+#[test]
+fn a_crossing_listed_before_a_step_over_it_is_listed_once() {
+    let a = 0.6352379835224309f64;
+    let (b, eps) = (a * 3.7179756315729873, a * 10f64.powf(-3.939055416494993));
+    traced_through_a_folded_change_point([a, b, b - eps, a - eps], -1.0, 2.456448804613307);
+}
+
 #[test]
 fn a_folded_change_point_is_traced_through() {
     let cases: [([f64; 4], f64, f64); 6] = [

@@ -354,30 +354,32 @@ pub fn trace_curve_of<K: Kernel>(
                 // change point (`a + c = b + d`, `a > d`) stopped there: 704 of 1,000 random
                 // near-kites and 497 of 1,000 others, traced through it.
                 let near_branch_point = singular_ratio_at(m, &path.at_sigma(p.sigma), &p.q) < CROSSING_SINGULAR;
-                let (past, event) = if let Some(k) = past_kink(m, &path, &metric, &p, 2.0 * floor, &cfg, pivot) {
-                    (k.point, Some(k.event))
+                let (past, event, listed_past) = if let Some(k) =
+                    past_kink(m, &path, &metric, &p, 2.0 * floor, &cfg, pivot)
+                {
+                    (k.point, Some(k.event), true)
                 } else if let Some(c) =
                     crossed.take().filter(|c| near_branch_point && (c.z(&metric) - p.z(&metric)).dot(&p.tangent) > 0.0)
                 {
                     // Listed where the trace stands, next to the branch point: the point past
                     // it may lie a few thousandths of arclength on.
-                    (c, Some(event_at(EventKind::SingularCrossing, &path, &p, None)))
+                    (c, Some(event_at(EventKind::SingularCrossing, &path, &p, None)), false)
                 } else if let Some(c) =
                     past_crossing(m, &path, &metric, &p, 2.0 * floor, &cfg, -side, false, &orientation)
                 {
                     let event = event_at(EventKind::SingularCrossing, &path, &c, None);
-                    (c, Some(event))
+                    (c, Some(event), true)
                 } else if let Some(c) = (just_crossed && near_branch_point)
                     .then(|| past_crossing(m, &path, &metric, &p, 2.0 * floor, &cfg, side, true, &orientation))
                     .flatten()
                 {
-                    (c, None)
+                    (c, None, true)
                 } else if let Some(c) = anchor
                     .as_ref()
                     .filter(|_| near_branch_point)
                     .and_then(|(a, o)| jumped_past(m, &path, &metric, a, *o, &p, ds, &cfg, &orientation))
                 {
-                    (c, Some(event_at(EventKind::SingularCrossing, &path, &p, None)))
+                    (c, Some(event_at(EventKind::SingularCrossing, &path, &p, None)), false)
                 } else {
                     let x = path.at_sigma(p.sigma);
                     let at = m.location(x.as_ref(), None);
@@ -394,7 +396,10 @@ pub fn trace_curve_of<K: Kernel>(
                         },
                     });
                 };
+                // The walk to the event: where it is listed, before or past the branch point.
+                let walked_before = walked;
                 walked += (past.z(&metric) - p.z(&metric)).norm();
+                let listed_at_walk = if listed_past { walked } else { walked_before };
                 p = past;
                 crossed = None;
                 if left_path(&p) {
@@ -406,7 +411,7 @@ pub fn trace_curve_of<K: Kernel>(
                     Some(event) if event.kind == EventKind::Kink => out.kinks.push(event),
                     Some(event) => {
                         out.crossings.push(event);
-                        crossed_at.push(walked);
+                        crossed_at.push(listed_at_walk);
                     }
                     None => {}
                 }
@@ -615,7 +620,10 @@ fn away_from_branch_points<K: Kernel>(m: &K, x: &X<K>, q: &Q<K>) -> bool {
 /// point are the corrector's wandering beside a branch point and not two passes through it: the
 /// wandering's events lay at most 2.5 steps apart over the random near-kites and six-bars first
 /// measured, and 4.1 in one of about 12,000 near-kites of a wider run (listed as two crossings
-/// 5.6e-9 of the input apart, where the bound was 4); a second pass at least 459.
+/// 5.6e-9 of the input apart, where the bound was 4); a second pass at least 459. Each event's
+/// walk is taken where it is listed: a crossing listed where the trace stood, before a step over
+/// the branch point 13 steps long, was counted past that step, 19 steps from the crossing
+/// listed beside it, and listed twice.
 const BESIDE_WALK: f64 = 16.0;
 
 /// The distance between the scaled points `z` and `z0` with each coordinate's difference
