@@ -889,8 +889,8 @@ fn analogs_by_an_input_without_a_unit_say_their_quantitys() {
     assert_eq!(named(&rad, "t"), "t [unit of t]");
     assert_eq!(named(&rad, "d(psi)/d(t)"), "d(psi)/d(t) [rad/unit of t]");
     assert_eq!(named(&deg, "d(psi)/d(t)"), "d(psi)/d(t) [deg/unit of t]");
-    assert_eq!(named(&rad, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [rad/unit of t^2]");
-    assert_eq!(named(&deg, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [deg/unit of t^2]");
+    assert_eq!(named(&rad, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [rad/(unit of t)^2]");
+    assert_eq!(named(&deg, "d2(phi)/d(t)^2"), "d2(phi)/d(t)^2 [deg/(unit of t)^2]");
     assert_eq!(named(&deg, "d(p.x)/d(t)"), "d(p.x)/d(t) [length unit/unit of t]");
     let k = at(&rad, "d(psi)/d(t)");
     assert!((rows_deg[0][k] - rows_rad[0][k].to_degrees()).abs() < 1e-12);

@@ -15,12 +15,19 @@ pub(crate) fn derive(column: &str, base: &[(&str, &str)]) -> String {
         return match parts.as_deref() {
             Some([a]) => format!("{top}/{a}"),
             // Two inputs of the same unit (two angles): the square of it.
-            Some([a, b]) if a == b => format!("{top}/{a}^2"),
-            Some([a, b]) => format!("{top}/({a} {b})"),
+            Some([a, b]) if a == b => format!("{top}/{}^2", factor(a)),
+            Some([a, b]) => format!("{top}/({} {})", factor(a), factor(b)),
             _ => String::new(),
         };
     }
     unit_of(column).unwrap_or("").to_string()
+}
+
+/// A unit as a factor of a product or power in a derived one: in parentheses where it is
+/// written in words (an input of no known kind is in `unit of t`): `rad/unit of t^2` read as
+/// per the unit of `t^2`. Alone after `/` it reads as meant (`rad/unit of t`).
+fn factor(unit: &str) -> String {
+    if unit.contains(' ') { format!("({unit})") } else { unit.to_string() }
 }
 
 /// Whether `column` is an analog column (`d(n)/d(i)`, `d2(n)/...`) rather than a base quantity.
@@ -93,6 +100,19 @@ mod tests {
         assert_eq!(derive("d2(pc.x)/d(phi)d(t)", BASE), "mm/(rad s)");
         assert_eq!(derive("d(beta)/d(phi)", BASE), "");
         assert_eq!(derive("beta", BASE), "");
+    }
+
+    /// A unit written in words is in parentheses as a factor of a power or a product:
+    /// `rad/unit of t^2` read as per the unit of `t^2`.
+    #[test]
+    fn units_in_words_are_factors_in_parentheses() {
+        let base = &[("phi", "rad"), ("t", "unit of t"), ("s", "unit of s"), ("p", "length unit")];
+        assert_eq!(derive("d(phi)/d(t)", base), "rad/unit of t");
+        assert_eq!(derive("d2(phi)/d(t)^2", base), "rad/(unit of t)^2");
+        assert_eq!(derive("d2(p.x)/d(t)d(s)", base), "length unit/((unit of t) (unit of s))");
+        assert_eq!(derive("d2(p.x)/d(phi)d(t)", base), "length unit/(rad (unit of t))");
+        assert_eq!(derive("d2(p.x)/d(phi)^2", base), "length unit/rad^2");
+        assert_eq!(derive("t", base), "unit of t");
     }
 
     #[test]

@@ -172,7 +172,7 @@ fn units_of_two_inputs_a_time_input_and_overrides() {
     // so that the analogs by it say what they are per (as the command line writes them)...
     assert_eq!(
         (h["t"].as_str(), h["d(phi1)/d(t)"].as_str(), h["d2(phi1)/d(t)^2"].as_str(), h["phi1"].as_str()),
-        ("unit of t", "rad/unit of t", "rad/unit of t^2", "rad")
+        ("unit of t", "rad/unit of t", "rad/(unit of t)^2", "rad")
     );
     // ... until the user states it; the inferred units stay.
     let h = header(&table.with_units(&[("t", "s")]));
