@@ -570,3 +570,37 @@ fn an_error_ends_the_streamed_run_where_it_happens() {
     assert!(count > 10, "{count} steps");
     assert_eq!((t1.to_bits(), y.map(f64::to_bits)), (t.to_bits(), [x[0].to_bits(), speed[0].to_bits()]));
 }
+
+/// A tiny absolute tolerance (pure relative error control) makes the first step from a state
+/// with a zero component (an oscillator at its turning point, a machine at rest) many orders
+/// of magnitude shorter than the tolerances allow: the step grows at the largest rate, and
+/// the changes of the other components its first steps lose are not a state stuck at a huge
+/// value. Such runs stopped with `CannotAdvance` (the oscillator at t = 3e-11 at `atol` 1e-20,
+/// a machine from rest at t = 9e-12), telling the user to start from a smaller value.
+#[test]
+fn a_tiny_absolute_tolerance_integrates_from_a_zero_component() {
+    for atol in [1e-20, 1e-30, 1e-300] {
+        let cfg = OdeConfig::default().with_tolerances(1e-10, atol);
+        // y = (cos t, -sin t) over 10 time units: a global error of the tolerance times the
+        // steps (a few hundred) at most.
+        let (t, y) = dopri5(|_, y| Ok([y[1], -y[0]]), 0.0, [1.0, 0.0], 10.0, &cfg, |_, _| Ok(false)).unwrap();
+        assert_eq!(t, 10.0);
+        assert_close!(y[0], 10f64.cos(), 1e-8, "atol {atol:e}: {y:?}");
+        assert_close!(y[1], -10f64.sin(), 1e-8, "atol {atol:e}: {y:?}");
+        // A crank of constant reduced inertia J = 0.5 from rest at 0.3 under a torque of 1:
+        // phi = 0.3 + t^2, omega = 2 t (a quadratic, which the order-5 steps integrate to
+        // rounding; the tolerance bounds the rest).
+        let sc = SliderCrank::default();
+        let model = crank_model(0.5).unwrap();
+        let run = Simulation::new(&sc, &model)
+            .start(0.3, 0.0)
+            .guess(sc.guess_flat(&[0.3]))
+            .drive(|_, _, _| 1.0)
+            .config(RunConfig::default().with_ode(cfg))
+            .run(1.0)
+            .unwrap();
+        assert_eq!(run.t_end, 1.0);
+        assert_close!(run.end[0], 1.3, 1e-9, "atol {atol:e}: {:?}", run.end);
+        assert_close!(run.end[1], 2.0, 1e-9, "atol {atol:e}: {:?}", run.end);
+    }
+}

@@ -148,7 +148,8 @@ pub(super) fn norm<const D: usize>(v: &[f64; D], y0: &[f64; D], y1: &[f64; D], c
 /// at the last accepted length, before the failure is judged: a grown step's trial can land
 /// past a position the motion never reaches, not far enough from its tangent to count as thrown
 /// off. A step that cannot change a component of the state by a change larger than the
-/// absolute tolerance (the component's value is too large to register it) is
+/// absolute tolerance (the component's value is too large to register it), once the error
+/// control no longer lengthens the steps at its largest rate, is
 /// [`DynamicsError::CannotAdvance`].
 /// A step that collapses below the resolution of the time where it is (a few units in the last
 /// place of `t`, whatever the span) is [`DynamicsError::StepTooSmall`]; a span that needs more
@@ -267,7 +268,7 @@ pub(crate) fn dopri5_judged<const D: usize>(
             h *= 0.2;
             continue;
         }
-        let grow = if err == 0.0 { 5.0 } else { (0.9 * err.powf(-0.2)).clamp(0.2, 5.0) };
+        let grow = if err == 0.0 { MAX_GROWTH } else { (0.9 * err.powf(-0.2)).clamp(0.2, MAX_GROWTH) };
         if err > 1.0 {
             h *= grow.min(1.0);
             continue;
@@ -275,9 +276,15 @@ pub(crate) fn dopri5_judged<const D: usize>(
         // A component the step should move by more than the absolute tolerance but that stays
         // where it is: its value is so large that the change is below the spacing of f64
         // numbers there. Its error looks small (relative to the huge value), so the step would
-        // be accepted and the component would never move.
+        // be accepted and the component would never move. Not while the step is still growing
+        // at the largest rate towards the length the tolerances allow (not the last step, not
+        // at the largest step): a first step taken from a tiny absolute tolerance (a start at
+        // rest, or a speed of 0, at an `atol` of 1e-20) is many orders of magnitude shorter than
+        // that, and a change it loses is gained a few steps later. Taken as stuck there, a
+        // plain oscillator at `rtol` 1e-10 and `atol` 1e-20 stopped at t = 3e-11.
         let change = combine(&[0.0; D], h, &B, &k);
-        if let Some(i) = (0..D).find(|&i| y1[i] == y[i] && change[i].abs() > cfg.atol) {
+        let growing = !last && grow >= MAX_GROWTH && h < cfg.h_max;
+        if let Some(i) = (0..D).find(|&i| !growing && y1[i] == y[i] && change[i].abs() > cfg.atol) {
             return Err(DynamicsError::CannotAdvance { t, component: i, value: y[i], change: change[i] });
         }
         let step = dense(t, h, &y, &y1, &k);
@@ -291,6 +298,10 @@ pub(crate) fn dopri5_judged<const D: usize>(
     }
     Err(DynamicsError::TooManySteps { steps: cfg.max_steps, t, t_end })
 }
+
+/// The largest factor by which one accepted step grows the next (the error control's bound,
+/// reached where the error estimate is far below the tolerances).
+const MAX_GROWTH: f64 = 5.0;
 
 /// Whether a trial state `trial`, `dt` after the accepted state `y` whose derivative is `dy`,
 /// was thrown off the motion by a step too large for it: every component departs from the
