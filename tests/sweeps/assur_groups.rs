@@ -375,8 +375,9 @@ fn off_curve(g: &dyn Group, points: &[(f64, [f64; 4])]) -> f64 {
 
 /// Traces case `k`'s curve over two turns of the crank with steps `ds` and checks it against the
 /// fine continuation: every point on the curve, its first limit position the continuation's
-/// (where the continuation meets one), and the curve closed (a crank's curve closes after a
-/// turn, a rocking one after its limit positions). A case whose continuation meets a singular
+/// (where the continuation meets one), and the curve closed where it comes back to its start (a
+/// crank's curve after a turn, a rocking one after its limit positions, most curves within the
+/// two turns). A case whose continuation meets a singular
 /// crossing is left out.
 fn check_trace<M>(k: &Case<M>, ds: f64) -> Result<(), TestCaseError>
 where
@@ -395,14 +396,22 @@ where
     let folds: Vec<f64> = t.folds.iter().map(|e| e.x[0]).collect();
     // Each point converged to the corrector's tolerance (1e-12 of the rows' magnitudes).
     prop_assert!(off_curve(&k.m, &points) <= 1e-9, "{:?}: {:e}", k, off_curve(&k.m, &points));
-    prop_assert!(
-        t.closed && !t.truncated,
-        "{:?}: closed {}, truncated {}, folds {:?}",
-        k,
-        t.closed,
-        t.truncated,
-        folds
-    );
+    prop_assert!(!t.truncated, "{:?}: truncated, folds {:?}", k, folds);
+    if !t.closed {
+        // A curve can need more than the two turns traced to close: a triad whose unknowns
+        // wind on after an S of two limit positions (one case of about 19,000 in a wider run
+        // turned its first unknown 7.5 rad in two turns of the crank). Then the trace runs to
+        // the end, and no point after it left the start comes back near it, where it would
+        // have closed.
+        let near_start = |&(phi, q): &(f64, [f64; 4])| {
+            let apart = |d: f64| d.rem_euclid(TAU).min((-d).rem_euclid(TAU));
+            (0..4).map(|j| apart(q[j] - k.q0[j])).fold(apart(phi - k.phi0), f64::max) < 0.05
+        };
+        let last = points.last().map_or(k.phi0, |p| p.0);
+        prop_assert!((last - to).abs() <= 0.05, "{:?}: not closed, the last point at {}, folds {:?}", k, last, folds);
+        let back = points.iter().skip_while(|p| near_start(p)).find(|p| near_start(p));
+        prop_assert!(back.is_none(), "{:?}: not closed, back at the start at {:?}", k, back);
+    }
     match followed.limit {
         Some(l) => {
             prop_assert!(folds.first().is_some_and(|f| (f - l).abs() <= 1e-6), "{:?}: folds {:?}, {}", k, folds, l)
@@ -469,4 +478,27 @@ fn a_long_step_that_ends_near_the_start_does_not_close_the_curve() {
     let m = Triad { oa, l1, p12, p13, gamma, l2, l3, bx, by, cx, cy };
     let k = Case { m, phi0: 2.3626527895128495, q0, dir: 1.0, turns: 2, per_turn: 0 };
     check_trace(&k, 1.0).unwrap();
+}
+
+/// A triad whose curve does not close within the two turns traced: after an S of two limit
+/// positions 0.076 rad apart its unknowns wind on (the first 7.5 rad in the two turns). The
+/// check took the trace's open curve for a missed closing (found by a wider run).
+#[test]
+fn a_triad_winding_on_past_two_turns_is_traced_open() {
+    let m = Triad {
+        oa: 1.0,
+        l1: 1.8517127887660365,
+        p12: 2.1276557321587526,
+        p13: 2.6574649086364692,
+        gamma: 2.221064058197771,
+        l2: 2.4102972130468583,
+        l3: 3.2354904588701454,
+        bx: -0.7293782650324268,
+        by: 1.1370463485072233,
+        cx: 1.6572650116678758,
+        cy: -1.089152003733506,
+    };
+    let q0 = [0.33160927689979114, -2.719440343873791, -0.9801136294815583, -0.053870931416756106];
+    let k = Case { m, phi0: -0.6384499504432058, q0, dir: -1.0, turns: 1, per_turn: 2 };
+    check_trace(&k, TraceConfig::default().ds).unwrap();
 }
