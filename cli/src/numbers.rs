@@ -16,7 +16,7 @@ pub fn number(text: &str) -> Result<f64, String> {
 }
 
 /// The message for `text`, written non-zero, that reads as 0.
-pub fn underflow(text: &str) -> String {
+fn underflow(text: &str) -> String {
     format!(
         "`{text}` is too small for a 64-bit float and would be 0: give 0 if 0 is meant, or express the model in \
          other units"
@@ -25,7 +25,7 @@ pub fn underflow(text: &str) -> String {
 
 /// Whether the number `text` (one that parses) is written as zero: no digit but 0 before its
 /// exponent. `1e-400` is not, though it parses to 0 (it underflows), as `1e400` overflows.
-pub fn is_zero_text(text: &str) -> bool {
+fn is_zero_text(text: &str) -> bool {
     let mantissa = text.split(['e', 'E']).next().unwrap_or(text);
     !mantissa.chars().any(|c| c.is_ascii_digit() && c != '0')
 }

@@ -1,6 +1,6 @@
 //! `--params a=1.2,b=3`: parameter values overriding the declared defaults.
 
-use crate::numbers::{is_zero_text, underflow};
+use crate::numbers::number;
 use crate::{Failed, exit};
 use kinloop_model::Model;
 
@@ -19,18 +19,12 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
             return Err(Failed(exit::USAGE));
         }
         given.push(name);
-        let Ok(v) = value.parse::<f64>() else {
-            eprintln!("error: the value of `{name}` in --params, `{value}`, is not a number");
-            return Err(Failed(exit::USAGE));
+        // A number too small for a double is refused: `1e-400` would be 0.
+        let v = match number(value) {
+            Ok(v) if v.is_finite() => v,
+            Ok(_) => return Err(exit::usage(format!("the value of `{name}` in --params is not finite"))),
+            Err(e) => return Err(exit::usage(format!("the value of `{name}` in --params: {e}"))),
         };
-        if !v.is_finite() {
-            eprintln!("error: the value of `{name}` in --params is not finite");
-            return Err(Failed(exit::USAGE));
-        }
-        if v == 0.0 && !is_zero_text(value) {
-            eprintln!("error: the value of `{name}` in --params: {}", underflow(value));
-            return Err(Failed(exit::USAGE));
-        }
         if !model.set_param(name, v) {
             eprintln!(
                 "error: {} has no parameter `{name}` (its parameters: {})",

@@ -1,6 +1,6 @@
 //! `kinloop solve`: states at given inputs as CSV, with units in the header.
 
-use crate::numbers::{is_zero_text, number, underflow};
+use crate::numbers::number;
 use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
 use kinloop_runtime::{Error, EventKind, NewtonConfig, Number, QuantityKind, Table};
@@ -241,22 +241,17 @@ pub fn point(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
 
 /// One list of inputs (of the option `option`): one number per input.
 pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Failed> {
-    let x: Result<Vec<f64>, _> = spec.split(',').map(|v| v.trim().parse::<f64>()).collect();
-    // A number too small for a double reads as 0: refused as it is in --params (`1e-400` was
-    // taken as 0 without a word).
-    if let Some(v) = spec.split(',').map(str::trim).find(|v| v.parse() == Ok(0.0) && !is_zero_text(v)) {
-        return Err(exit::usage(format!("{option} {spec}: {}", underflow(v))));
-    }
+    // A number too small for a double is refused, as in --params (`1e-400` was taken as 0
+    // without a word).
+    let x = spec.split(',').map(number).collect::<Result<Vec<f64>, _>>();
     match x {
         Ok(x) if x.len() == ni && x.iter().all(|v| v.is_finite()) => Ok(x),
         Ok(x) if x.len() != ni => {
             eprintln!("error: {option} {spec} gives {}, the mechanism has {ni}", Count(x.len(), "input"));
             Err(Failed(exit::USAGE))
         }
-        _ => {
-            eprintln!("error: {option} {spec} is not a list of finite numbers");
-            Err(Failed(exit::USAGE))
-        }
+        Ok(_) => Err(exit::usage(format!("{option} {spec} is not a list of finite numbers"))),
+        Err(e) => Err(exit::usage(format!("{option} {spec} is not a list of finite numbers: {e}"))),
     }
 }
 
