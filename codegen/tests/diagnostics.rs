@@ -206,3 +206,27 @@ fn the_largest_test_mechanisms_are_far_below_the_size_limit() {
     let limit = kinloop_codegen::model::MAX_MODEL_NODES;
     assert!(a.model.graph.len() * 50 < limit, "{} nodes", a.model.graph.len());
 }
+
+#[test]
+fn an_angle_sum_without_parentheses_at_the_end_of_a_chain_gets_the_fix() {
+    // A rotating guide offset by `delta`: the polar term is the last of a chain of vectors,
+    // so `+ delta` meets the whole chain, not the polar term alone.
+    let e = errors(
+        "pub struct Guide { params r, d, delta; input phi; unknowns th, s;
+         loop g: r @ phi == (0, -d) + s @ th + delta; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("cannot add a vector and a scalar"), "{e:#?}");
+    assert!(e[0].contains("write `s @ (th + delta)`"), "{e:#?}");
+    let e = errors(
+        "pub struct Guide { params r, d, delta; input phi; unknowns th, s;
+         loop g: r @ phi == (0, -d) - s @ th - delta; }",
+    );
+    assert!(e[0].contains("write `s @ (th - delta)`"), "{e:#?}");
+    // A literal zero is not an angle offset: no parentheses are suggested for it.
+    let e = errors(
+        "pub struct Guide { params r, d; input phi; unknowns th, s;
+         loop g: r @ phi == (0, -d) + s @ th + 0; }",
+    );
+    assert!(e[0].starts_with("cannot add a vector and a scalar") && !e[0].contains("help"), "{e:#?}");
+}

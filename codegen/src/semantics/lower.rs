@@ -255,6 +255,17 @@ impl Lowerer {
     }
 }
 
+/// The polar term `len @ angle` that ends `e`, through a chain of sums and differences: in
+/// `(0, -d) + s @ th + delta` the scalar `delta` meets `(0, -d) + s @ th`, whose last term is
+/// the polar vector the writer most likely meant to turn by `th + delta`.
+fn last_polar(e: &Expr) -> Option<(&Expr, &Expr)> {
+    match e {
+        Expr::Binary { op: BinOp::Polar, lhs, rhs, .. } => Some((lhs, rhs)),
+        Expr::Binary { op: BinOp::Add | BinOp::Sub, rhs, .. } => last_polar(rhs),
+        _ => None,
+    }
+}
+
 /// The error for operands of the wrong types, with what to write instead.
 fn binary_type_error(op: BinOp, op_span: Span, (lhs, rhs): (&Expr, &Expr), l: Val, r: Val) -> syn::Error {
     match op {
@@ -266,7 +277,9 @@ fn binary_type_error(op: BinOp, op_span: Span, (lhs, rhs): (&Expr, &Expr), l: Va
                 r.kind_name(),
                 op.symbol()
             );
-            if let (Expr::Binary { op: BinOp::Polar, lhs: len, rhs: angle, .. }, Val::V(..), Val::S(_)) = (lhs, l, r) {
+            // `+ 0` after a vector is the zero vector mistyped as a scalar, not an angle offset.
+            let zero = matches!(rhs, Expr::Num { value, .. } if *value == 0.0);
+            if let (Some((len, angle)), Val::V(..), Val::S(_), false) = (last_polar(lhs), l, r, zero) {
                 let fixed = format!("{} @ ({} {} {})", len.show(), angle.show(), op.symbol(), rhs.show());
                 let example = if fixed.len() <= 60 { fixed } else { "r @ (phi + gamma)".to_string() };
                 msg.push_str(&format!(
