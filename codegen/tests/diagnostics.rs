@@ -230,3 +230,43 @@ fn an_angle_sum_without_parentheses_at_the_end_of_a_chain_gets_the_fix() {
     );
     assert!(e[0].starts_with("cannot add a vector and a scalar") && !e[0].contains("help"), "{e:#?}");
 }
+
+#[test]
+fn an_unknown_in_no_equation_is_not_counted_in_the_under_determined_equations() {
+    // `s` is in no loop at all; `x` and `t` share the loop's x projection alone.
+    for extra in ["", "point q = (s, 0); output o = s;"] {
+        let e = errors(&format!(
+            "pub struct S {{ params r, l; input phi; unknowns psi, x, s, t;
+             loop oab: r @ phi == (x, 0) + l @ psi + t @ 0; {extra} }}"
+        ));
+        let summary = &e[0];
+        assert!(
+            summary.contains(
+                "under-determined part: 2 unknowns `x`, `t` appear in only 1 equation `oab.x`, \
+                 and 1 unknown `s` appears in no equation"
+            ),
+            "{e:#?}"
+        );
+        // Removing `s` leaves 3 unknowns for 2 equations: one equation is missing, not two.
+        assert!(summary.contains("help: add 1 scalar equation involving `x`, `t`"), "{e:#?}");
+        assert!(summary.contains("help: use `s` in a loop or equation, or remove it"), "{e:#?}");
+        assert!(e.iter().any(|m| m.starts_with("unknown `s` appears in no `loop` or `eq`")), "{e:#?}");
+    }
+}
+
+#[test]
+fn an_equation_without_unknowns_is_not_counted_in_the_over_determined_unknowns() {
+    let e = errors(
+        "pub struct S { params r, l, a, b; input phi; unknowns psi, x;
+         loop oab: r @ phi == (x, 0) + l @ psi; eq e1: psi == phi; eq e2: a == b; }",
+    );
+    assert!(
+        e[0].contains(
+            "over-determined part: 2 equations `oab.y`, `e1` involve only 1 unknown `psi`, \
+             and 1 equation `e2` involves no unknown"
+        ),
+        "{e:#?}"
+    );
+    assert!(e[0].contains("help: remove 1 scalar equation of the over-determined part"), "{e:#?}");
+    assert!(e[0].contains("help: remove `e2` (see the errors below)"), "{e:#?}");
+}

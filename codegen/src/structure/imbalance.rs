@@ -52,10 +52,10 @@ pub(super) fn report(
     let mut msg = summary(model);
     let mut help = Vec::new();
     if !dm.over_equations.is_empty() {
-        help.push(over_part(model, dm, over_notes.is_empty(), &mut msg));
+        over_part(model, dm, &over_notes, &mut msg, &mut help);
     }
     if !dm.under_unknowns.is_empty() {
-        help.push(under_part(model, dm, under_notes.is_empty(), &mut msg));
+        under_part(model, dm, &under_notes, &mut msg, &mut help);
     }
     for h in help {
         msg.push_str("\nhelp: ");
@@ -106,88 +106,108 @@ fn namers(model: &Model) -> (impl Fn(&BTreeSet<usize>) -> String + '_, impl Fn(&
     )
 }
 
-/// Describes the over-determined part in `msg`; returns the help line. `explained`: every
-/// equation of it already has its own error (no unknown at all).
-fn over_part(model: &Model, dm: &Imbalance, explained: bool, msg: &mut String) -> String {
+/// Describes the over-determined part in `msg` and adds its help lines. `involved`: the
+/// equations of the part that involve some unknown; the others (no unknown at all) have their
+/// own errors, so they are listed apart and counted in no surplus.
+fn over_part(model: &Model, dm: &Imbalance, involved: &[usize], msg: &mut String, help: &mut Vec<String>) {
     let (eq_names, u_names) = namers(model);
     let eqs = |n: usize| plural(n, "scalar equation", "scalar equations");
-    let surplus = dm.over_equations.len().saturating_sub(dm.over_unknowns.len()).max(1);
-    let verb = if dm.over_equations.len() == 1 { "involves" } else { "involve" };
-    if dm.over_unknowns.is_empty() {
-        msg.push_str(&format!(
-            "\nover-determined part: {} {} {verb} no unknown",
-            plural(dm.over_equations.len(), "equation", "equations"),
-            eq_names(&dm.over_equations)
-        ));
+    let involved: BTreeSet<usize> = involved.iter().copied().collect();
+    let empty: BTreeSet<usize> = dm.over_equations.difference(&involved).copied().collect();
+    let no_unknown = |set: &BTreeSet<usize>| {
+        let verb = if set.len() == 1 { "involves" } else { "involve" };
+        format!("{} {} {verb} no unknown", plural(set.len(), "equation", "equations"), eq_names(set))
+    };
+    msg.push_str("\nover-determined part: ");
+    if involved.is_empty() {
+        msg.push_str(&no_unknown(&empty));
     } else {
+        let verb = if involved.len() == 1 { "involves" } else { "involve" };
         msg.push_str(&format!(
-            "\nover-determined part: {} {} {verb} only {} {}",
-            plural(dm.over_equations.len(), "equation", "equations"),
-            eq_names(&dm.over_equations),
+            "{} {} {verb} only {} {}",
+            plural(involved.len(), "equation", "equations"),
+            eq_names(&involved),
             plural(dm.over_unknowns.len(), "unknown", "unknowns"),
             u_names(&dm.over_unknowns)
         ));
-    }
-    if explained {
-        // Only equations without unknowns: their own errors say what to do.
-        format!("remove {} (see the errors below)", eq_names(&dm.over_equations))
-    } else {
-        format!(
+        if !empty.is_empty() {
+            msg.push_str(&format!(", and {}", no_unknown(&empty)));
+        }
+        let surplus = involved.len().saturating_sub(dm.over_unknowns.len()).max(1);
+        help.push(format!(
             "remove {} of the over-determined part (a loop that repeats another contour?), \
              or turn {} it uses into {}",
             eqs(surplus),
             plural(surplus, "parameter", "parameters"),
             if surplus == 1 { "an unknown" } else { "unknowns" }
-        )
+        ));
+    }
+    if !empty.is_empty() {
+        // Equations without unknowns: their own errors say what to do.
+        help.push(format!("remove {} (see the errors below)", eq_names(&empty)));
     }
 }
 
-/// Describes the under-determined part in `msg`; returns the help line. `explained`: every
-/// unknown of it already has its own error (in no equation at all).
-fn under_part(model: &Model, dm: &Imbalance, explained: bool, msg: &mut String) -> String {
+/// Describes the under-determined part in `msg` and adds its help lines. `involved`: the
+/// unknowns of the part that appear in some equation; the others (in no equation at all, or
+/// whose terms cancel) have their own errors, so they are listed apart and counted in no
+/// missing equation: an unknown in no equation does not appear in the part's equations.
+fn under_part(model: &Model, dm: &Imbalance, involved: &[usize], msg: &mut String, help: &mut Vec<String>) {
     let (eq_names, u_names) = namers(model);
     let eqs = |n: usize| plural(n, "scalar equation", "scalar equations");
-    let missing = dm.under_unknowns.len().saturating_sub(dm.under_equations.len()).max(1);
-    let verb = if dm.under_unknowns.len() == 1 { "appears" } else { "appear" };
-    if dm.under_equations.is_empty() {
-        msg.push_str(&format!(
-            "\nunder-determined part: {} {} {verb} in no equation",
-            plural(dm.under_unknowns.len(), "unknown", "unknowns"),
-            u_names(&dm.under_unknowns)
-        ));
+    let involved: BTreeSet<usize> = involved.iter().copied().collect();
+    let absent: BTreeSet<usize> = dm.under_unknowns.difference(&involved).copied().collect();
+    let in_no_equation = |set: &BTreeSet<usize>| {
+        let verb = if set.len() == 1 { "appears" } else { "appear" };
+        format!("{} {} {verb} in no equation", plural(set.len(), "unknown", "unknowns"), u_names(set))
+    };
+    msg.push_str("\nunder-determined part: ");
+    if involved.is_empty() {
+        msg.push_str(&in_no_equation(&absent));
     } else {
+        let verb = if involved.len() == 1 { "appears" } else { "appear" };
         msg.push_str(&format!(
-            "\nunder-determined part: {} {} {verb} in only {} {}",
-            plural(dm.under_unknowns.len(), "unknown", "unknowns"),
-            u_names(&dm.under_unknowns),
+            "{} {} {verb} in only {} {}",
+            plural(involved.len(), "unknown", "unknowns"),
+            u_names(&involved),
             plural(dm.under_equations.len(), "equation", "equations"),
             eq_names(&dm.under_equations)
         ));
-    }
-    let written = |u: &usize| model.written_in_equations.get(*u).copied().unwrap_or(false);
-    if explained && dm.under_unknowns.iter().all(written) {
-        // Written in equations, where their terms cancel: their own errors say so.
-        let one = dm.under_unknowns.len() == 1;
-        format!(
-            "check the equations {} {} written in: {} terms cancel there (see the errors below)",
-            u_names(&dm.under_unknowns),
-            if one { "is" } else { "are" },
-            if one { "its" } else { "their" }
-        )
-    } else if explained {
-        // Only unknowns in no equation: their own errors say what to do.
-        format!(
-            "use {} in a loop or equation, or remove {} (see the errors below)",
-            u_names(&dm.under_unknowns),
-            if dm.under_unknowns.len() == 1 { "it" } else { "them" }
-        )
-    } else {
-        format!(
-            "add {} involving the under-determined unknowns (a `loop` gives two, an `eq` one), \
-             or turn {} of them into {}",
+        if !absent.is_empty() {
+            msg.push_str(&format!(", and {}", in_no_equation(&absent)));
+        }
+        let missing = involved.len().saturating_sub(dm.under_equations.len()).max(1);
+        let them = if absent.is_empty() { "the under-determined unknowns".to_string() } else { u_names(&involved) };
+        help.push(format!(
+            "add {} involving {them} (a `loop` gives two, an `eq` one), or turn {} of them into {}",
             eqs(missing),
             missing,
             if missing == 1 { "an input" } else { "inputs" }
+        ));
+    }
+    if !absent.is_empty() {
+        help.push(absent_help(model, &absent));
+    }
+}
+
+/// The help for unknowns in no equation, whose own errors follow: written in equations where
+/// their terms cancel, or never used in one.
+fn absent_help(model: &Model, absent: &BTreeSet<usize>) -> String {
+    let (_, u_names) = namers(model);
+    let one = absent.len() == 1;
+    let written = |u: &usize| model.written_in_equations.get(*u).copied().unwrap_or(false);
+    if absent.iter().all(written) {
+        format!(
+            "check the equations {} {} written in: {} terms cancel there (see the errors below)",
+            u_names(absent),
+            if one { "is" } else { "are" },
+            if one { "its" } else { "their" }
+        )
+    } else {
+        format!(
+            "use {} in a loop or equation, or remove {} (see the errors below)",
+            u_names(absent),
+            if one { "it" } else { "them" }
         )
     }
 }
