@@ -250,7 +250,7 @@ fn an_unknown_in_no_equation_is_not_counted_in_the_under_determined_equations() 
         // Removing `s` leaves 3 unknowns for 2 equations: one equation is missing, not two.
         assert!(summary.contains("help: add 1 scalar equation involving `x`, `t`"), "{e:#?}");
         assert!(summary.contains("help: use `s` in a loop or equation, or remove it"), "{e:#?}");
-        assert!(e.iter().any(|m| m.starts_with("unknown `s` appears in no `loop` or `eq`")), "{e:#?}");
+        assert!(e.iter().any(|m| m.starts_with("unknown `s` ") && m.contains("appears in no `loop` or `eq`")), "{e:#?}");
     }
 }
 
@@ -269,4 +269,18 @@ fn an_equation_without_unknowns_is_not_counted_in_the_over_determined_unknowns()
     );
     assert!(e[0].contains("help: remove 1 scalar equation of the over-determined part"), "{e:#?}");
     assert!(e[0].contains("help: remove `e2` (see the errors below)"), "{e:#?}");
+}
+
+#[test]
+fn an_unknown_used_only_in_an_output_is_told_to_become_a_let() {
+    for (extra, place) in [("point q = (s, 0);", "`point q`"), ("output o = 2 * s;", "`output o`")] {
+        let e = errors(&format!("pub struct S {{ params r, l; input phi; unknowns psi, x, s; loop oab: r @ phi == (x, 0) + l @ psi; {extra} }}"));
+        let local: Vec<&String> = e.iter().filter(|m| m.starts_with("unknown `s`")).collect();
+        assert_eq!(local.len(), 1, "{e:#?}");
+        assert!(
+            local[0].starts_with(&format!("unknown `s` is used in {place} but appears in no `loop` or `eq`")),
+            "{e:#?}"
+        );
+        assert!(local[0].contains("declare it with `let s = ...;` in place of the unknown"), "{e:#?}");
+    }
 }

@@ -144,6 +144,15 @@ fn unknowns_in_no_equation(model: &Model, inc: &[BTreeSet<usize>], errors: &mut 
                  so nothing determines it\n\
                  help: check the equations it is written in; if nothing should determine it, remove it"
             )
+        } else if let Some(column) = first_output_using(model, u) {
+            // Named in an output alone: removing it would leave that output undefined, so say
+            // what to write in its place.
+            format!(
+                "unknown `{unk}` is used in {column} but appears in no `loop` or `eq`, so nothing \
+                 determines it\n\
+                 help: use it in a loop or equation; if it is a value computed from the others, \
+                 declare it with `let {unk} = ...;` in place of the unknown"
+            )
         } else {
             format!(
                 "unknown `{unk}` appears in no `loop` or `eq`, so nothing determines it\n\
@@ -154,6 +163,13 @@ fn unknowns_in_no_equation(model: &Model, inc: &[BTreeSet<usize>], errors: &mut 
         errors.push(syn::Error::new(unk.span(), message));
     }
     isolated
+}
+
+/// The first `point` or `output` whose value depends on unknown `u`, as `` `point p` ``.
+fn first_output_using(model: &Model, u: usize) -> Option<String> {
+    let uses = |node: NodeId| model.graph.leaves_of(&[node]).contains(&Leaf::Unknown(u as u16));
+    let point = model.points.iter().find(|p| uses(p.x) || uses(p.y)).map(|p| format!("`point {}`", p.name));
+    point.or_else(|| model.scalars.iter().find(|s| uses(s.value)).map(|s| format!("`output {}`", s.name)))
 }
 
 /// Inputs nothing depends on: named nowhere, or named only where no equation or output depends
