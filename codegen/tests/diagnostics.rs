@@ -250,7 +250,10 @@ fn an_unknown_in_no_equation_is_not_counted_in_the_under_determined_equations() 
         // Removing `s` leaves 3 unknowns for 2 equations: one equation is missing, not two.
         assert!(summary.contains("help: add 1 scalar equation involving `x`, `t`"), "{e:#?}");
         assert!(summary.contains("help: use `s` in a loop or equation, or remove it"), "{e:#?}");
-        assert!(e.iter().any(|m| m.starts_with("unknown `s` ") && m.contains("appears in no `loop` or `eq`")), "{e:#?}");
+        assert!(
+            e.iter().any(|m| m.starts_with("unknown `s` ") && m.contains("appears in no `loop` or `eq`")),
+            "{e:#?}"
+        );
     }
 }
 
@@ -274,7 +277,9 @@ fn an_equation_without_unknowns_is_not_counted_in_the_over_determined_unknowns()
 #[test]
 fn an_unknown_used_only_in_an_output_is_told_to_become_a_let() {
     for (extra, place) in [("point q = (s, 0);", "`point q`"), ("output o = 2 * s;", "`output o`")] {
-        let e = errors(&format!("pub struct S {{ params r, l; input phi; unknowns psi, x, s; loop oab: r @ phi == (x, 0) + l @ psi; {extra} }}"));
+        let e = errors(&format!(
+            "pub struct S {{ params r, l; input phi; unknowns psi, x, s; loop oab: r @ phi == (x, 0) + l @ psi; {extra} }}"
+        ));
         let local: Vec<&String> = e.iter().filter(|m| m.starts_with("unknown `s`")).collect();
         assert_eq!(local.len(), 1, "{e:#?}");
         assert!(
@@ -283,4 +288,39 @@ fn an_unknown_used_only_in_an_output_is_told_to_become_a_let() {
         );
         assert!(local[0].contains("declare it with `let s = ...;` in place of the unknown"), "{e:#?}");
     }
+}
+
+#[test]
+fn a_comma_for_the_semicolon_before_the_next_item_is_one_error_at_the_comma() {
+    for (src, keyword, next) in [
+        ("params r, l, input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;", "params", "input"),
+        ("params r, l; input phi, unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;", "input", "unknowns"),
+        ("params r, l; input phi; unknowns psi, x, loop c: r @ phi == (x, 0) + l @ psi;", "unknowns", "loop"),
+        (
+            "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi, point p = (x, 0);",
+            "loop",
+            "point",
+        ),
+    ] {
+        let src = format!("pub struct S {{ {src} }}");
+        let e = errors(&src);
+        assert_eq!(e.len(), 1, "{e:#?}");
+        assert!(
+            e[0].starts_with(&format!(
+                "expected `;` at the end of this `{keyword}` item, found `,`: write `;` here, before `{next}`"
+            )),
+            "{e:#?}"
+        );
+        // The next item is kept: the fallback still declares its names.
+        let out = kinloop_codegen::expand(tokens(&src)).to_string();
+        assert!(out.contains("pub phi") && out.contains("pub psi"), "{out}");
+    }
+    // A parameter may still be named like an item's keyword.
+    assert!(
+        errors(
+            "pub struct S { params r, l, force, mass; input phi; unknowns psi, x;
+         loop c: r @ phi == (x, 0) + l @ psi; output o = force * mass * x; }"
+        )
+        .is_empty()
+    );
 }

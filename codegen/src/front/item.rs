@@ -194,29 +194,65 @@ fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
         Err(e)
     } else if input.peek(Token![=]) {
         Err(input.error("unexpected `=`: equations are written with `==`"))
+    } else if comma_before_item(input) {
+        // `params a, b, input phi;`: the `,` stands for the `;`. It is consumed, so that the
+        // next item is parsed (and its names declared) as written.
+        let comma = input.parse::<Token![,]>()?;
+        let next = input.cursor().token_tree().map(|(tt, _)| short(&tt.to_string())).unwrap_or_default();
+        Err(syn::Error::new(
+            comma.span,
+            format!(
+                "expected `;` at the end of this `{}` item, found `,`: write `;` here, before `{next}`, \
+                 which starts the next item",
+                item_keyword(item)
+            ),
+        ))
     } else {
         // Underline the end of the item that lacks its `;`, not the next item.
-        let keyword = match &item.kind {
-            ItemKind::Decls(DeclKind::Params, _) => "params",
-            ItemKind::Decls(DeclKind::Inputs, _) => "input",
-            ItemKind::Decls(DeclKind::Unknowns, _) => "unknowns",
-            ItemKind::Let { .. } => "let",
-            ItemKind::Loop { .. } => "loop",
-            ItemKind::Eq { .. } => "eq",
-            ItemKind::Point { .. } => "point",
-            ItemKind::Output { .. } => "output",
-            ItemKind::Body(_) => "body",
-            ItemKind::Force { .. } => "force",
-            ItemKind::Torque { .. } => "torque",
-            ItemKind::Gravity { .. } => "gravity",
-        };
         let next = match input.cursor().token_tree() {
             Some((tt, _)) => format!(" (before `{}`)", short(&tt.to_string())),
             None => String::new(),
         };
         Err(SpanRange::single(item.range().end)
-            .error(format!("expected `;` at the end of this `{keyword}` item{next}")))
+            .error(format!("expected `;` at the end of this `{}` item{next}", item_keyword(item))))
     }
+}
+
+/// The keyword that starts `item`, as the user writes it.
+fn item_keyword(item: &Item) -> &'static str {
+    match &item.kind {
+        ItemKind::Decls(DeclKind::Params, _) => "params",
+        ItemKind::Decls(DeclKind::Inputs, _) => "input",
+        ItemKind::Decls(DeclKind::Unknowns, _) => "unknowns",
+        ItemKind::Let { .. } => "let",
+        ItemKind::Loop { .. } => "loop",
+        ItemKind::Eq { .. } => "eq",
+        ItemKind::Point { .. } => "point",
+        ItemKind::Output { .. } => "output",
+        ItemKind::Body(_) => "body",
+        ItemKind::Force { .. } => "force",
+        ItemKind::Torque { .. } => "torque",
+        ItemKind::Gravity { .. } => "gravity",
+    }
+}
+
+/// Whether `input` is at a `,` written for the `;` that ends an item: an item's keyword follows
+/// it, itself followed by what starts that item (`input phi`, `point p = ..`, `loop c: ..`),
+/// not by what follows a declared name. So `params a, force, mass;` still declares a parameter
+/// named `force`, while `params a, b, input phi;` ends the parameters before `input`.
+fn comma_before_item(input: ParseStream) -> bool {
+    let fork = input.fork();
+    if fork.parse::<Token![,]>().is_err() || fork.peek(Token![#]) || !at_item_start(&fork) {
+        return false;
+    }
+    if fork.peek(Token![let]) || fork.peek(Token![loop]) {
+        // Keywords of Rust, never a name.
+        return true;
+    }
+    if fork.call(<Ident as syn::ext::IdentExt>::parse_any).is_err() {
+        return false;
+    }
+    !(fork.is_empty() || fork.peek(Token![,]) || fork.peek(Token![;]) || fork.peek(Token![=]) || fork.peek(Token![:]))
 }
 
 /// At most 24 characters of `s`, for quoting source in messages.
@@ -243,7 +279,7 @@ fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::
                 skip_to_separator(input);
             }
         }
-        if input.peek(Token![,]) {
+        if input.peek(Token![,]) && !comma_before_item(input) {
             input.parse::<Token![,]>()?;
             if input.peek(Token![;]) {
                 break;
