@@ -324,3 +324,16 @@ fn a_comma_for_the_semicolon_before_the_next_item_is_one_error_at_the_comma() {
         .is_empty()
     );
 }
+
+#[test]
+fn a_trailing_double_equals_is_told_to_be_removed() {
+    let e = errors("pub struct S { params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi ==; }");
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("nothing follows this `==`; remove it"), "{e:#?}");
+    // A second equality after it is a chain, written as two items.
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi == (0, 0); }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("an equation has one `==`: write each equality as its own"), "{e:#?}");
+}

@@ -373,10 +373,11 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
 /// Without it the item's own message ("expected `;` at the end of this item") points before
 /// the token and names no replacement.
 fn not_in_the_language(input: ParseStream) -> Option<syn::Error> {
+    if input.peek(Token![==]) {
+        return Some(second_equals(input));
+    }
     let message = if input.peek(Token![%]) {
         "kinloop has no `%`: write `wrap(x, period)` for `x` reduced to `0 <= x < period`"
-    } else if input.peek(Token![==]) {
-        "an equation has one `==`: write each equality as its own `eq` or `loop`"
     } else if input.peek(Token![<]) || input.peek(Token![>]) || input.peek(Token![!=]) {
         "kinloop has no comparisons: a value that depends on one is written with `min`, `max`, \
          `clamp` or `abs`"
@@ -389,6 +390,22 @@ fn not_in_the_language(input: ParseStream) -> Option<syn::Error> {
         return None;
     };
     Some(input.error(message))
+}
+
+/// The error for a second `==` after a complete equation, underlining both of its characters:
+/// one with nothing after it (`loop c: a == b ==;`) is left over and only to be removed, one
+/// with a value after it (`a == b == c`) chains two equalities.
+fn second_equals(input: ParseStream) -> syn::Error {
+    let fork = input.fork();
+    let Ok(eq) = fork.parse::<Token![==]>() else {
+        return input.error("an equation has one `==`");
+    };
+    let range = SpanRange { start: eq.spans[0], end: eq.spans[1] };
+    if fork.is_empty() || fork.peek(Token![;]) {
+        range.error("nothing follows this `==`; remove it (an equation is `lhs == rhs`, with one `==`)")
+    } else {
+        range.error("an equation has one `==`: write each equality as its own `eq` or `loop`")
+    }
 }
 
 /// Skips to the next top-level `,` or `;` of a list, leaving it (error recovery within a list).
