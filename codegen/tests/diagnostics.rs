@@ -337,3 +337,12 @@ fn a_trailing_double_equals_is_told_to_be_removed() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("an equation has one `==`: write each equality as its own"), "{e:#?}");
 }
+
+#[test]
+fn a_body_property_given_with_equals_or_colon_is_told_to_drop_it() {
+    for (clause, sign) in [("mass = m", "="), ("mass: m", ":")] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} params m; body b: {clause}, com (x, 0); }}"));
+        assert_eq!(e.len(), 1, "{e:#?}");
+        assert!(e[0].starts_with(&format!("no `{sign}` after `mass`: write `mass value`")), "{e:#?}");
+    }
+}

@@ -33,6 +33,11 @@ pub(super) fn parse_body(input: ParseStream) -> syn::Result<BodyDef> {
         }
         let clause: Ident = input.parse()?;
         let repeated = || syn::Error::new(clause.span(), format!("`{clause}` is given twice for body `{name}`"));
+        if input.peek(Token![=]) || input.peek(Token![:]) {
+            // `mass = m`, `com: p`: the value follows its keyword directly, as in the form.
+            let sign = if input.peek(Token![=]) { "=" } else { ":" };
+            return Err(input.error(format!("no `{sign}` after `{clause}`: write `{clause} value`, as in {BODY}")));
+        }
         match clause.to_string().as_str() {
             "mass" | "com" | "inertia" => {
                 let value = parse_expr(input)?;
