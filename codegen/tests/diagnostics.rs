@@ -346,3 +346,10 @@ fn a_body_property_given_with_equals_or_colon_is_told_to_drop_it() {
         assert!(e[0].starts_with(&format!("no `{sign}` after `mass`: write `mass value`")), "{e:#?}");
     }
 }
+
+#[test]
+fn gravity_without_parentheses_is_told_to_add_them() {
+    let e = errors(&format!("pub struct S {{ {SLIDER} params m, g; body b: mass m, com (x, 0); gravity 0, -g; }}"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("gravity is one vector: write its components in parentheses"), "{e:#?}");
+}

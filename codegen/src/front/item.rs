@@ -87,7 +87,14 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
         parse_torque(input)?
     } else if look.peek(kw::gravity) {
         input.parse::<kw::gravity>()?;
-        ItemKind::Gravity { value: parse_expr(input)? }
+        let value = parse_expr(input)?;
+        if input.peek(Token![,]) {
+            // `gravity 0, -g;`: the components without the parentheses of a vector.
+            return Err(value
+                .range()
+                .error("gravity is one vector: write its components in parentheses, as in `gravity (0, -g);`"));
+        }
+        ItemKind::Gravity { value }
     } else {
         let mut err = look.error();
         if let Ok(id) = input.fork().parse::<Ident>() {
