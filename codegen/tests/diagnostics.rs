@@ -353,3 +353,19 @@ fn gravity_without_parentheses_is_told_to_add_them() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("gravity is one vector: write its components in parentheses"), "{e:#?}");
 }
+
+#[test]
+fn a_loop_projection_without_unknowns_is_not_told_to_be_removed() {
+    // The slider's y is given: only the x projection of the loop involves an unknown. A
+    // projection cannot be removed from a loop; the loop becomes an `eq`, or gains an unknown.
+    let e = errors("pub struct S { params r, e; input phi; unknowns x; loop oab: r @ phi == (x, e); }");
+    assert_eq!(e.len(), 2, "{e:#?}");
+    assert!(!e[0].contains("remove `oab.y`"), "{e:#?}");
+    assert!(e[0].contains("help: write `loop oab` as an `eq` of its other projection, or use in `oab.y`"), "{e:#?}");
+    assert!(e[1].starts_with("the y projection of `loop oab` (`oab.y`) contains no unknown"), "{e:#?}");
+    assert!(!e[1].contains("help: remove it"), "{e:#?}");
+    assert!(e[1].contains("write it as `eq oab: ... == ...;` in place of the loop"), "{e:#?}");
+    // An `eq` without unknowns, or a whole loop, can be removed, and is told so.
+    let e = errors(&format!("pub struct S {{ {SLIDER} params a; eq k: a == 2; }}"));
+    assert!(e[0].contains("help: remove `k` (see the errors below)"), "{e:#?}");
+}

@@ -81,16 +81,22 @@ fn equations_without_unknowns(model: &Model, inc: &[BTreeSet<usize>], errors: &m
                  help: write it so that an unknown remains in it, or remove it",
                 named.join(", ")
             )
-        } else {
-            let what = if !eq.is_loop || both {
-                format!("{item} contains no unknown")
-            } else {
-                let axis = if eq.name.ends_with(".x") { "x" } else { "y" };
-                format!("the {axis} projection of `loop {}` (`{}`) contains no unknown", eq.item, eq.name)
-            };
+        } else if !eq.is_loop || both {
             format!(
-                "{what}: it only relates parameters and inputs, so it cannot be solved for anything\n\
+                "{item} contains no unknown: it only relates parameters and inputs, so it cannot be solved \
+                 for anything\n\
                  help: remove it, or declare the quantity it should determine with `unknowns`"
+            )
+        } else {
+            // One projection of a loop cannot be removed: the loop is one scalar equation (an
+            // `eq` of its other projection), or the projection lacks an unknown.
+            let (axis, other) = if eq.name.ends_with(".x") { ("x", "y") } else { ("y", "x") };
+            format!(
+                "the {axis} projection of `loop {}` (`{}`) contains no unknown: it only relates parameters \
+                 and inputs, so it cannot be solved for anything\n\
+                 help: if only the {other} projection is an equation, write it as `eq {}: ... == ...;` in \
+                 place of the loop; otherwise use in the {axis} projection the unknown it should determine",
+                eq.item, eq.name, eq.item
             )
         };
         errors.push(eq.range.error(message));

@@ -143,9 +143,36 @@ fn over_part(model: &Model, dm: &Imbalance, involved: &[usize], msg: &mut String
         ));
     }
     if !empty.is_empty() {
-        // Equations without unknowns: their own errors say what to do.
-        help.push(format!("remove {} (see the errors below)", eq_names(&empty)));
+        help.push(empty_help(model, &empty));
     }
+}
+
+/// The help for equations without unknowns, whose own errors follow: an `eq` or a whole loop is
+/// removed; a loop's projection cannot be, so the loop becomes an `eq` of its other projection
+/// (or gains the unknown the projection lacks).
+fn empty_help(model: &Model, empty: &BTreeSet<usize>) -> String {
+    let (eq_names, _) = namers(model);
+    let lone = |e: &usize| {
+        let eq = &model.equations[*e];
+        eq.is_loop && model.equations.iter().enumerate().any(|(k, o)| o.item == eq.item && !empty.contains(&k))
+    };
+    let (projections, whole): (BTreeSet<usize>, BTreeSet<usize>) = empty.iter().copied().partition(lone);
+    let mut parts = Vec::new();
+    if !whole.is_empty() {
+        parts.push(format!("remove {}", eq_names(&whole)));
+    }
+    if !projections.is_empty() {
+        let loops = list(projections.iter().map(|&e| format!("loop {}", model.equations[e].item)));
+        let one = projections.len() == 1;
+        parts.push(format!(
+            "write {loops} as {} of {} other projection, or use in {} the unknown {} should determine",
+            if one { "an `eq`" } else { "`eq`s" },
+            if one { "its" } else { "their" },
+            eq_names(&projections),
+            if one { "it" } else { "each" }
+        ));
+    }
+    format!("{} (see the errors below)", parts.join("; "))
 }
 
 /// Describes the under-determined part in `msg` and adds its help lines. `involved`: the
