@@ -369,3 +369,18 @@ fn a_loop_projection_without_unknowns_is_not_told_to_be_removed() {
     let e = errors(&format!("pub struct S {{ {SLIDER} params a; eq k: a == 2; }}"));
     assert!(e[0].contains("help: remove `k` (see the errors below)"), "{e:#?}");
 }
+
+#[test]
+fn the_name_of_a_loop_or_load_used_as_a_value_is_not_an_unknown_name() {
+    for (extra, label) in [
+        ("output o = c.x;", "loop c"),
+        ("params m; body b: mass m, com (x, 0); output o = b.x;", "body b"),
+        ("torque t on psi = 1; output o = t;", "torque t"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} {extra} }}"));
+        assert_eq!(e.len(), 1, "{e:#?}");
+        let name = label.split(' ').nth(1).unwrap_or_default();
+        assert!(e[0].starts_with(&format!("`{name}` is the name of `{label}`, a label, not a value")), "{e:#?}");
+        assert!(!e[0].contains("unknown name"), "{e:#?}");
+    }
+}

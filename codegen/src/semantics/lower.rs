@@ -23,6 +23,9 @@ pub struct Lowerer {
     /// The unknowns named in the `loop` or `eq` being lowered, by index (where its terms may
     /// still cancel): an equation left with no unknown says which it named.
     pub(super) written_here: std::collections::BTreeSet<usize>,
+    /// The names of the `loop`, `eq`, `body`, `force` and `torque` items, with their keyword:
+    /// labels, not values, so that a use of one as a value says so.
+    pub(super) labels: std::collections::HashMap<String, &'static str>,
 }
 
 /// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
@@ -55,6 +58,7 @@ impl Lowerer {
             in_equation: false,
             written_in_equations: Vec::new(),
             written_here: Default::default(),
+            labels: Default::default(),
         }
     }
 

@@ -193,6 +193,11 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
             ItemKind::Let { name, .. } => lw.declare_later(name, "let"),
             ItemKind::Point { name, .. } => lw.declare_later(name, "point"),
             ItemKind::Output { name, .. } => lw.declare_later(name, "output"),
+            ItemKind::Loop { name, .. } => lw.declare_label(name, "loop"),
+            ItemKind::Eq { name, .. } => lw.declare_label(name, "eq"),
+            ItemKind::Body(body) => lw.declare_label(&body.name, "body"),
+            ItemKind::Force { name, .. } => lw.declare_label(name, "force"),
+            ItemKind::Torque { name, .. } => lw.declare_label(name, "torque"),
             _ => {}
         }
     }

@@ -70,6 +70,12 @@ impl Lowerer {
         }
     }
 
+    /// Notes the name of a `loop`, `eq`, `body`, `force` or `torque` item (the first, where
+    /// two items share one: that mistake has its own error).
+    pub(super) fn declare_label(&mut self, name: &Ident, what: &'static str) {
+        self.labels.entry(key(name)).or_insert(what);
+    }
+
     /// Defines a `let`, `point` or `output` name at its position in the body (where its
     /// `Symbol::Later` placeholder stands).
     pub(super) fn define(&mut self, name: &Ident, v: Val) {
@@ -148,6 +154,18 @@ impl Lowerer {
                 format!(
                     "`{key}` is not a value a declaration can hold: its numbers are all finite; write a finite \
                      number here"
+                ),
+            ));
+            return;
+        }
+        // The name of a loop, equation, body or load: declared, but a label rather than a
+        // value (`c.x` for a loop `c`), so "unknown name" and "declare it" would mislead.
+        if let Some(what) = self.labels.get(&key) {
+            self.errors.push(syn::Error::new(
+                id.span(),
+                format!(
+                    "`{key}` is the name of `{what} {key}`, a label, not a value; to use a value here, \
+                     name it with `let` above this line (as in `let v = r @ phi;`)"
                 ),
             ));
             return;
