@@ -384,3 +384,28 @@ fn the_name_of_a_loop_or_load_used_as_a_value_is_not_an_unknown_name() {
         assert!(!e[0].contains("unknown name"), "{e:#?}");
     }
 }
+
+#[test]
+fn a_guess_that_uses_an_unknown_through_a_name_says_which_unknown() {
+    // Above the guess: the output it names depends on `x`.
+    let e = errors(
+        "pub struct S { params r, l; input phi; output o = 2 * x; unknowns psi = o, x;
+         loop c: r @ phi == (x, 0) + l @ psi; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("an initial guess cannot use unknowns"), "{e:#?}");
+    assert!(e[0].contains("this one depends on `x`"), "{e:#?}");
+    // Below the guess: moving it up is the fix only where it uses no unknown.
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi = o, x;
+         loop c: r @ phi == (x, 0) + l @ psi; output o = 2 * x; }",
+    );
+    assert!(e[0].starts_with("`o` is used before it is defined; move `output o = ...;` above this line"), "{e:#?}");
+    assert!(e[0].contains("an initial guess may use it only if it uses no unknown"), "{e:#?}");
+    // Elsewhere the move is the whole fix, and said alone.
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi, x;
+         loop c: p == (x, 0) + l @ psi; point p = r @ phi; }",
+    );
+    assert!(e[0].ends_with("move `point p = ...;` above this line"), "{e:#?}");
+}

@@ -26,6 +26,9 @@ pub struct Lowerer {
     /// The names of the `loop`, `eq`, `body`, `force` and `torque` items, with their keyword:
     /// labels, not values, so that a use of one as a value says so.
     pub(super) labels: std::collections::HashMap<String, &'static str>,
+    /// Set while an unknown's initial guess is lowered: a name defined further down may be
+    /// moved above it only if it uses no unknown, which its error says.
+    pub(super) in_guess: bool,
 }
 
 /// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
@@ -59,6 +62,7 @@ impl Lowerer {
             written_in_equations: Vec::new(),
             written_here: Default::default(),
             labels: Default::default(),
+            in_guess: false,
         }
     }
 
@@ -77,12 +81,27 @@ impl Lowerer {
 
     /// An unknown's initial guess: any scalar that does not use unknowns.
     pub(super) fn guess(&mut self, e: &Expr) -> Option<NodeId> {
-        let v = self.lower_scalar(e, "an initial guess")?;
-        if self.graph.leaves_of(&[v]).iter().any(|l| matches!(l, Leaf::Unknown(_))) {
-            self.errors.push(e.range().error(
-                "an initial guess cannot use unknowns (they are what is being solved); \
-                 write a number or an expression of parameters and inputs, e.g. `= 0.5` or `= l + r`",
-            ));
+        self.in_guess = true;
+        let v = self.lower_scalar(e, "an initial guess");
+        self.in_guess = false;
+        let v = v?;
+        let used: Vec<String> = self
+            .graph
+            .leaves_of(&[v])
+            .into_iter()
+            .filter_map(|l| match l {
+                Leaf::Unknown(u) => Some(format!("`{}`", self.name_of_unknown(u as usize)?)),
+                _ => None,
+            })
+            .collect();
+        if !used.is_empty() {
+            // Name them: through a `let` or an output, the guess may not name them itself.
+            self.errors.push(e.range().error(format!(
+                "an initial guess cannot use unknowns (they are what is being solved), and this one \
+                 depends on {}; write a number or an expression of parameters and inputs, e.g. `= 0.5` \
+                 or `= l + r`",
+                used.join(", ")
+            )));
             return None;
         }
         Some(v)

@@ -70,6 +70,15 @@ impl Lowerer {
         }
     }
 
+    /// The name of unknown `u`, as declared.
+    pub(super) fn name_of_unknown(&self, u: usize) -> Option<&str> {
+        self.scope
+            .symbols
+            .iter()
+            .find(|(_, (s, _))| matches!(s, Symbol::Unknown(i) if *i as usize == u))
+            .map(|(k, _)| k.as_str())
+    }
+
     /// Notes the name of a `loop`, `eq`, `body`, `force` or `torque` item (the first, where
     /// two items share one: that mistake has its own error).
     pub(super) fn declare_label(&mut self, name: &Ident, what: &'static str) {
@@ -119,9 +128,12 @@ impl Lowerer {
             Some((Symbol::Let(v), _)) => Some(*v),
             Some((Symbol::Poisoned, _)) => None,
             Some((Symbol::Later(what), span)) => {
+                // In a guess, moving the definition up helps only if it uses no unknown.
+                let caveat =
+                    if self.in_guess { " (an initial guess may use it only if it uses no unknown)" } else { "" };
                 let mut e = syn::Error::new(
                     id.span(),
-                    format!("`{key}` is used before it is defined; move `{what} {key} = ...;` above this line"),
+                    format!("`{key}` is used before it is defined; move `{what} {key} = ...;` above this line{caveat}"),
                 );
                 e.combine(syn::Error::new(*span, format!("`{what} {key}` is defined here, after its use")));
                 self.errors.push(e);
