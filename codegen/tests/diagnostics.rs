@@ -409,3 +409,15 @@ fn a_guess_that_uses_an_unknown_through_a_name_says_which_unknown() {
     );
     assert!(e[0].ends_with("move `point p = ...;` above this line"), "{e:#?}");
 }
+
+#[test]
+fn a_vector_in_square_brackets_or_braces_is_told_to_use_parentheses() {
+    for (vector, says) in [("[x, 0]", "not `[x, 0]`"), ("{x, 0}", "not `{x, 0}`")] {
+        let e = errors(&format!(
+            "pub struct S {{ params r, l; input phi; unknowns psi, x; loop c: r @ phi == {vector} + l @ psi; }}"
+        ));
+        assert_eq!(e.len(), 1, "{e:#?}");
+        assert!(e[0].starts_with("a vector is written in parentheses: write `(x, 0)`"), "{e:#?}");
+        assert!(e[0].contains(says), "{e:#?}");
+    }
+}

@@ -224,6 +224,25 @@ impl Expr {
 /// risking the compiler's stack in the recursive parts (parsing, lowering, dropping the tree).
 pub const MAX_DEPTH: usize = 128;
 
+/// The error for a vector written in square brackets or braces (`[x, 0]`, `{x, 0}`), as other
+/// languages write one: a vector is `(x, y)`. `None` for anything else.
+fn vector_in_other_brackets(input: ParseStream) -> Option<syn::Error> {
+    let Some((proc_macro2::TokenTree::Group(group), _)) = input.cursor().token_tree() else {
+        return None;
+    };
+    let (open, close) = match group.delimiter() {
+        proc_macro2::Delimiter::Bracket => ('[', ']'),
+        proc_macro2::Delimiter::Brace => ('{', '}'),
+        _ => return None,
+    };
+    let comma = |t: &proc_macro2::TokenTree| matches!(t, proc_macro2::TokenTree::Punct(p) if p.as_char() == ',');
+    if !group.stream().into_iter().any(|t| comma(&t)) {
+        return None;
+    }
+    let inside = group.stream().to_string().replace(" ,", ",");
+    Some(input.error(format!("a vector is written in parentheses: write `({inside})`, not `{open}{inside}{close}`")))
+}
+
 /// Parses one expression, stopping before `==`, `;`, `,` or the end of the input.
 pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
     Parser { depth: 0 }.expr(input, 0)
@@ -511,6 +530,9 @@ impl Parser {
             return self.paren_or_vector(input);
         }
         const VALUE: &str = "a number, a name, a call `f(x)`, a vector `(x, y)` or `(expression)`";
+        if let Some(e) = vector_in_other_brackets(input) {
+            return Err(e);
+        }
         if input.is_empty() {
             return Err(input.error(format!("expected a value: {VALUE}")));
         }
