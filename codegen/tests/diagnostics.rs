@@ -421,3 +421,10 @@ fn a_vector_in_square_brackets_or_braces_is_told_to_use_parentheses() {
         assert!(e[0].contains(says), "{e:#?}");
     }
 }
+
+#[test]
+fn a_macro_call_is_told_to_drop_the_bang() {
+    let e = errors(&format!("pub struct S {{ {SLIDER} output o = max!(x, 1); }}"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("kinloop has no macros: call the function without `!`"), "{e:#?}");
+}

@@ -391,6 +391,10 @@ fn not_in_the_language(input: ParseStream) -> Option<syn::Error> {
     } else if input.peek(Token![::]) {
         "kinloop has no paths: write `pi` for `PI`, and functions by their own names (`sin(x)`, \
          not `f64::sin(x)`)"
+    } else if input.peek(Token![!]) && !input.peek(Token![!=]) && input.peek2(syn::token::Paren) {
+        // `max!(a, b)`, `vec2!(x, y)`: the name before the `!` parsed as a value.
+        "kinloop has no macros: call the function without `!`, as in `max(a, b)`, and write a \
+         vector as `(x, y)`"
     } else if input.peek(syn::token::Bracket) {
         "kinloop has no indexing: name each value (`let`, `point`, `.x` and `.y` of a vector)"
     } else {
