@@ -539,14 +539,17 @@ impl Parser {
         // The operator or token where a value was expected (a joint operator such as `==` whole).
         let mut found = String::new();
         let mut cursor = input.cursor();
+        let mut range = SpanRange::single(input.span());
         while let Some((tt, next)) = cursor.token_tree() {
             found.push_str(&tt.to_string().chars().take(24).collect::<String>());
+            range.end = tt.span();
             match tt {
                 proc_macro2::TokenTree::Punct(p) if p.spacing() == proc_macro2::Spacing::Joint => cursor = next,
                 _ => break,
             }
         }
-        Err(input.error(format!("expected a value ({VALUE}), found `{found}`")))
+        // Underlined whole, as it is quoted: both characters of `==`.
+        Err(range.error(format!("expected a value ({VALUE}), found `{found}`")))
     }
 
     /// `(expression)` or a vector `(x, y)`.
