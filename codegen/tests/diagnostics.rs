@@ -428,3 +428,11 @@ fn a_macro_call_is_told_to_drop_the_bang() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("kinloop has no macros: call the function without `!`"), "{e:#?}");
 }
+
+#[test]
+fn a_name_in_the_wrong_case_is_suggested_in_the_right_one() {
+    let e = errors(&format!("pub struct S {{ {SLIDER} output o = Sin(x); }}"));
+    assert!(e[0].starts_with("unsupported function `Sin`; did you mean `sin`?"), "{e:#?}");
+    let e = errors(&format!("pub struct S {{ {SLIDER} output o = PI * x; }}"));
+    assert!(e[0].starts_with("unknown name `PI`; did you mean `pi`?"), "{e:#?}");
+}

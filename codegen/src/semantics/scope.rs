@@ -182,12 +182,16 @@ impl Lowerer {
             ));
             return;
         }
+        // The built-in `pi` for its spellings in other cases (`PI` as in Rust's `f64::consts`),
+        // and for no other name: it would be "close" to every two-letter name.
+        let pi = key.eq_ignore_ascii_case("pi").then(|| "pi".to_string());
         let names: Vec<String> = self
             .scope
             .symbols
             .iter()
             .filter(|(_, (s, _))| !matches!(s, Symbol::Later(_)))
             .map(|(k, _)| k.clone())
+            .chain(pi)
             .collect();
         let hint = match similar(&key, names.iter()) {
             Some(s) => format!("; did you mean `{s}`?"),

@@ -1,19 +1,22 @@
 //! Did-you-mean suggestions for misspelt names.
 
 /// Suggests a candidate close to a misspelt name (at most 2 edits, a swap of neighbours
-/// counting as one). Ties are broken by name so the message is deterministic.
+/// counting as one), or one that differs in case alone. The nearest ignoring case comes first,
+/// so that `Sin` is `sin` and not `min` (both one edit away) and `PI` is `pi`; then the nearest
+/// as written; ties are broken by name so the message is deterministic.
 pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> Option<&'a String> {
     // The distance is quadratic in the lengths: long names get no suggestion.
     const LONGEST: usize = 64;
     if name.chars().count() > LONGEST {
         return None;
     }
+    let lower = name.to_lowercase();
     candidates
         .filter(|c| c.chars().count() <= LONGEST)
-        .map(|c| (edit_distance(name, c), c))
-        .filter(|(d, c)| *d <= 2 && *d < c.chars().count().max(name.chars().count()))
-        .min_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(b.1)))
-        .map(|(_, c)| c)
+        .map(|c| (edit_distance(name, c), edit_distance(&lower, &c.to_lowercase()), c))
+        .filter(|(d, folded, c)| *folded == 0 || (*d <= 2 && *d < c.chars().count().max(name.chars().count())))
+        .min_by(|a, b| a.1.cmp(&b.1).then_with(|| a.0.cmp(&b.0)).then_with(|| a.2.cmp(b.2)))
+        .map(|(_, _, c)| c)
 }
 
 /// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
@@ -59,6 +62,9 @@ mod tests {
         assert_eq!(similar("zzzzzz", names.iter()), None);
         // `sinn` is one edit from `sin` and from `sign`: the tie goes to the first by name.
         assert_eq!(similar("sinn", names.iter()).map(String::as_str), Some("sign"));
+        // A difference of case is closer than a different letter: `Sin` is `sin`, not `min`.
+        let functions: Vec<String> = ["min", "sin"].iter().map(|s| s.to_string()).collect();
+        assert_eq!(similar("Sin", functions.iter()).map(String::as_str), Some("sin"));
         // A one-letter name is never "close" to another one-letter name.
         let short: Vec<String> = vec!["a".into()];
         assert_eq!(similar("b", short.iter()), None);
