@@ -436,3 +436,13 @@ fn a_name_in_the_wrong_case_is_suggested_in_the_right_one() {
     let e = errors(&format!("pub struct S {{ {SLIDER} output o = PI * x; }}"));
     assert!(e[0].starts_with("unknown name `PI`; did you mean `pi`?"), "{e:#?}");
 }
+
+#[test]
+fn an_input_the_loops_determine_is_offered_to_become_an_unknown() {
+    // The slider's `x` declared an input: the loop over-determines `psi`.
+    let e = errors("pub struct S { params r, l; inputs phi, x; unknowns psi; loop c: r @ phi == (x, 0) + l @ psi; }");
+    assert!(e[0].contains("or turn 1 parameter or input it uses into an unknown"), "{e:#?}");
+    // With one input only, it must stay: parameters alone are offered.
+    let e = errors("pub struct S { params r, l, x; input phi; unknowns psi; loop c: r @ phi == (x, 0) + l @ psi; }");
+    assert!(e[0].contains("or turn 1 parameter it uses into an unknown"), "{e:#?}");
+}

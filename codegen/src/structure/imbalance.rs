@@ -134,11 +134,15 @@ fn over_part(model: &Model, dm: &Imbalance, involved: &[usize], msg: &mut String
             msg.push_str(&format!(", and {}", no_unknown(&empty)));
         }
         let surplus = involved.len().saturating_sub(dm.over_unknowns.len()).max(1);
+        let what = if inputs_may_become_unknowns(model, &involved, surplus) {
+            plural(surplus, "parameter or input", "parameters or inputs")
+        } else {
+            plural(surplus, "parameter", "parameters")
+        };
         help.push(format!(
             "remove {} of the over-determined part (a loop that repeats another contour?), \
-             or turn {} it uses into {}",
+             or turn {what} it uses into {}",
             eqs(surplus),
-            plural(surplus, "parameter", "parameters"),
             if surplus == 1 { "an unknown" } else { "unknowns" }
         ));
     }
@@ -173,6 +177,17 @@ fn empty_help(model: &Model, empty: &BTreeSet<usize>) -> String {
         ));
     }
     format!("{} (see the errors below)", parts.join("; "))
+}
+
+/// Whether turning `surplus` inputs into unknowns is a fix to offer: the equations depend on an
+/// input, and one input at least is left to drive the mechanism. A quantity declared an input
+/// that the loops determine (`inputs phi, x;` for a slider's `x`) over-determines them so.
+fn inputs_may_become_unknowns(model: &Model, equations: &BTreeSet<usize>, surplus: usize) -> bool {
+    if model.inputs.len() <= surplus {
+        return false;
+    }
+    let residuals: Vec<_> = equations.iter().map(|&e| model.equations[e].residual).collect();
+    model.graph.leaves_of(&residuals).iter().any(|l| matches!(l, crate::graph::dag::Leaf::Input(_)))
 }
 
 /// Describes the under-determined part in `msg` and adds its help lines. `involved`: the
