@@ -53,6 +53,7 @@ mod csv_rows;
 mod dynamics;
 mod exit;
 mod extremes;
+mod names;
 mod numbers;
 mod output;
 mod params;
@@ -318,7 +319,7 @@ enum Command {
         branch: Branch,
         /// The follower's point: a `point` of the declaration (the roller's centre, or the knife
         /// edge).
-        #[arg(long)]
+        #[arg(long, value_parser = crate::names::name)]
         point: String,
         #[command(flatten)]
         follower: cam::FollowerArgs,
@@ -403,7 +404,7 @@ enum Command {
         #[arg(long, value_enum)]
         format: Option<animate::Format>,
         /// A column shown as a readout with its chart on the HTML page (repeat for more).
-        #[arg(long, value_name = "COLUMN")]
+        #[arg(long, value_name = "COLUMN", value_parser = crate::names::name)]
         show: Vec<String>,
         /// The largest number of frames written: key frames of the SVG (default 90), poses of
         /// the page (default 721).
@@ -413,7 +414,7 @@ enum Command {
         /// centre, or its knife edge), turning with the one input: found by inversion of the
         /// point's motion over one turn from `--from`, as `kinloop cam` finds it, for the
         /// follower the options below describe (a roller or flat face drawn with it).
-        #[arg(long, value_name = "POINT")]
+        #[arg(long, value_name = "POINT", value_parser = crate::names::name)]
         cam: Option<String>,
         #[command(flatten)]
         follower: cam::FollowerArgs,
@@ -434,7 +435,7 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         targets: PathBuf,
         /// The point whose path goes through the targets.
-        #[arg(long, value_name = "POINT", conflicts_with = "function")]
+        #[arg(long, value_name = "POINT", conflicts_with = "function", value_parser = crate::names::name)]
         path: Option<String>,
         /// The function generated: the input and the unknown or output that follows it.
         #[arg(long, value_name = "INPUT:OUTPUT")]

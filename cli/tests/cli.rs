@@ -1111,3 +1111,43 @@ fn a_guess_too_many_turns_out_counts_them_briefly() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A name given with spaces around it (`--point " follower"`, pasted with its space) is the
+/// name, as a number with spaces around it is the number (`--roller " 10"`): it was "no point
+/// of that name" while the message listed `follower` among the points.
+#[test]
+fn names_with_spaces_around_them_are_the_names() {
+    let cam = shipped("dwell_cam.kl");
+    let four_bar = shipped("four_bar.kl");
+    let page = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("spaced_names.html");
+    let page = page.display().to_string();
+    let svg = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("spaced_names.svg");
+    let svg = svg.display().to_string();
+    let targets = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("spaced_names.csv");
+    std::fs::write(&targets, "0.97,1.49\n1.12,2.34\n0.15,2.28\n-0.61,1.42\n").expect("write the targets");
+    let targets = targets.display().to_string();
+    let coupler = shipped("coupler_four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let runs: [&[&str]; 4] = [
+        &["cam", &cam, "--point", " follower ", "--guide", " 0, 1", "--roller", " 10", "--samples", "37"],
+        &["animate", &four_bar, "--params", params, "--from", "0", "--to", "1", "--out", &page, "--show", " beta"],
+        &["animate", &cam, "--from", "0", "--to", "6.3", "--cam", "follower\t", "--guide", "0,1", "--out", &svg],
+        &["synth", &coupler, "--targets", &targets, "--path", " p", "--vary", "a=0.8..1.4", "--starts", "2"],
+    ];
+    for args in runs {
+        let out = kinloop(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {err}");
+    }
+    // The same name twice, once with spaces, is named twice.
+    let out = kinloop(&[
+        "animate", &four_bar, "--params", params, "--from", "0", "--to", "1", "--out", &page, "--show", "beta",
+        "--show", "beta ",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--show beta is given twice"), "{err}");
+    for file in [&page, &svg, &targets] {
+        let _ = std::fs::remove_file(file);
+    }
+}
