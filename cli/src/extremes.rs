@@ -276,18 +276,26 @@ fn csv(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
 }
 
 /// `v` to ten significant digits: in positional notation from 1e-3 to 1e6 (and zero), in
-/// scientific notation otherwise (subnormal, tiny, huge, not finite).
+/// scientific notation otherwise (subnormal, tiny, huge, not finite). The notation and the
+/// decimals follow the leading digit of `v` rounded to ten digits, not of `v`: a value just
+/// below a power of ten that rounds up to it (`9.99999999996`) has its leading digit one place
+/// higher, and counting from `v`'s own wrote eleven digits (`10.000000000`). Zero is written
+/// without a sign (`-0.0`, as `-0`, read as a value below zero).
 fn ten_digits(v: f64) -> String {
-    let a = v.abs();
-    if a == 0.0 {
-        // The logarithm of zero is minus infinity: no leading digit to count from.
-        format!("{v:.9}")
-    } else if (1e-3..1e6).contains(&a) {
-        // The leading digit's place is floor(log10 a), from -3 to 5 here: nine more after it.
-        let digits = (9 - a.log10().floor() as i32).max(0) as usize;
+    // `+ 0.0` turns a negative zero into zero and leaves every other value as it is.
+    let v = v + 0.0;
+    let scientific = format!("{v:.9e}");
+    // The exponent of the value rounded to ten digits (none: not finite, written as it is).
+    let Some(exponent) = scientific.split_once('e').and_then(|(_, e)| e.parse::<i32>().ok()) else {
+        return scientific;
+    };
+    if v == 0.0 || (-3..6).contains(&exponent) {
+        // The leading digit's place is `exponent`, from -3 to 5 here (0 for zero): nine more
+        // after it.
+        let digits = (9 - exponent).max(0) as usize;
         format!("{v:.digits$}")
     } else {
-        format!("{v:.9e}")
+        scientific
     }
 }
 
@@ -335,12 +343,38 @@ mod tests {
         assert_eq!(ten_digits(0.5), "0.5000000000");
         assert_eq!(ten_digits(0.001), "0.001000000000");
         assert_eq!(ten_digits(0.0), "0.000000000");
-        assert_eq!(ten_digits(-0.0), "-0.000000000");
         // Subnormal, tiny and huge magnitudes: scientific, ten digits still.
         assert_eq!(ten_digits(5e-324), "4.940656458e-324");
         assert_eq!(ten_digits(1.5e-4), "1.500000000e-4");
         assert_eq!(ten_digits(1e6), "1.000000000e6");
         assert_eq!(ten_digits(-2.5e10), "-2.500000000e10");
         assert_eq!(ten_digits(f64::INFINITY), "inf");
+    }
+
+    /// A value that rounds up to the next power of ten has ten digits counted from that power:
+    /// `9.99999999996` is `10.00000000` (eleven digits, `10.000000000`, before), and the notation
+    /// changes where the rounded value crosses 1e6 or 1e-3, not the value.
+    #[test]
+    fn ten_digits_where_rounding_carries_to_the_next_power_of_ten() {
+        for (v, written) in [
+            (9.99999999996, "10.00000000"),
+            (-9.99999999996, "-10.00000000"),
+            (99999.9999999, "100000.0000"),
+            (0.0999999999996, "0.1000000000"),
+            (999999.99999, "1.000000000e6"),
+            (0.00099999999996, "0.001000000000"),
+            (9.999999999e-4, "9.999999999e-4"),
+        ] {
+            let s = ten_digits(v);
+            assert_eq!(s, written, "{v}");
+            assert_eq!(significant(&s), 10, "{v}: {s}");
+        }
+    }
+
+    /// A zero is written without a sign: `-0.000000000` read as a value below zero.
+    #[test]
+    fn a_negative_zero_is_written_as_zero() {
+        assert_eq!(ten_digits(-0.0), "0.000000000");
+        assert_eq!(ten_digits(-1e-300), "-1.000000000e-300");
     }
 }

@@ -136,6 +136,25 @@ fn the_table_is_the_csv_readable() {
     assert!(below_one > 0, "no number below one: the case that needs it is not tested");
 }
 
+/// A value that rounds up to the next power of ten at ten digits keeps ten: the in-line
+/// slider-crank's slider at its outer dead centre, `x = -(r + l) = -9.99999999996` (by hand, the
+/// crank and the rod in line), is `-10.00000000` in the table; it was `-10.000000000`, eleven
+/// digits counted from the value's leading digit before rounding.
+#[test]
+fn a_value_that_rounds_up_to_a_power_of_ten_has_ten_digits() {
+    let slider = shipped("slider_crank.kl");
+    let (r, l) = (1.0, 8.99999999996);
+    let params = format!("r={r},l={l},e=0");
+    let args = ["extremes", &slider, "--params", &params, "--from", "0", "--to", "360", "--deg", "--columns", "x"];
+    let (_, rows) = csv(&kinloop(&args));
+    let (_, x) = row(&rows, "x");
+    // The extreme's value moves to second order only where the analog vanishes (see above).
+    assert!((x[0] - -(r + l)).abs() <= 1e-12, "{x:?}");
+    table_matches_csv(&args, "[deg]");
+    let text = String::from_utf8(kinloop(&[&args[..], &["--table"]].concat()).stdout).expect("utf-8");
+    assert!(text.contains(" -10.00000000 "), "{text}");
+}
+
 /// The table of `args` holds the CSV's numbers to ten significant digits; the count of those
 /// below one in magnitude.
 fn table_matches_csv(args: &[&str], unit: &str) -> usize {
