@@ -13,7 +13,6 @@ use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, MIN_DELTA, SpeedLaw};
 use kinloop_runtime::{Error, EventKind, Number, QuantityKind, Table};
-use std::io::Write;
 use std::path::Path;
 
 /// What `kinloop dynamics` was asked.
@@ -267,7 +266,7 @@ fn write_flywheel(f: &Flywheel, req: &Request, angle: f64, file: Option<std::fs:
     let mut t = Table::new(rows.iter().map(|(n, _, _)| n.to_string()).collect());
     t.push(rows.iter().map(|(_, _, v)| *v).collect());
     let units: Vec<(&str, &str)> = rows.iter().map(|(n, u, _)| (*n, *u)).collect();
-    let mut w = std::io::BufWriter::new(file);
-    t.with_units(&units).write_csv(&mut w)?;
-    w.flush()
+    // As the table is written: a sum of zeros' negative zero (a machine without loads) is `0`,
+    // as on standard error.
+    crate::csv_rows::write_table(std::io::BufWriter::new(file), &t.with_units(&units))
 }

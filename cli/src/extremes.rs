@@ -4,6 +4,7 @@
 //! velocity analog, refined between samples on the sweep's branch; otherwise an end of the
 //! range). Written as CSV with units, or as a readable table.
 
+use crate::csv_rows::unsigned_zero;
 use crate::output::unit_suffix;
 use crate::solve::{degrees, in_units, model_inputs, solve_failed};
 use crate::sweep::range_too_long;
@@ -266,11 +267,11 @@ fn cells(r: &Row, number: impl Fn(f64) -> String) -> Vec<String> {
 }
 
 /// CSV: numbers in their shortest form that reads back exactly, as the other commands write
-/// them (`1e-100`, where `f64`'s own formatting writes a hundred zeros).
+/// them (`1e-100`, where `f64`'s own formatting writes a hundred zeros; a zero without a sign).
 fn csv(rows: &[Row], inputs: &[String], units: &[&str]) -> String {
     let mut s = header(inputs, units).join(",") + "\n";
     for r in rows {
-        s += &(cells(r, |v| Number(v).to_string()).join(",") + "\n");
+        s += &(cells(r, |v| Number(unsigned_zero(v)).to_string()).join(",") + "\n");
     }
     s
 }

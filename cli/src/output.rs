@@ -144,10 +144,11 @@ pub fn text(text: &str, what: &str) -> Result<(), Failed> {
     out.write_all(text.as_bytes()).and_then(|()| out.flush()).map_err(|e| failed(what, e))
 }
 
-/// Writes `table` as CSV (`what`: "the table") to standard output and flushes it.
+/// Writes `table` as CSV (`what`: "the table") to standard output and flushes it, a zero
+/// written without a sign ([`crate::csv_rows`]).
 pub fn table(table: &Table, what: &str) -> Result<(), Failed> {
-    let mut out = std::io::stdout().lock();
-    table.write_csv(&mut out).and_then(|()| out.flush()).map_err(|e| failed(what, e))
+    let out = std::io::BufWriter::new(std::io::stdout().lock());
+    crate::csv_rows::write_table(out, table).map_err(|e| failed(what, e))
 }
 
 /// What the command line's parser stopped at, written where it goes, and the exit code: the

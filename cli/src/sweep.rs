@@ -254,8 +254,10 @@ pub(crate) fn write_events(
     file: Option<std::fs::File>,
 ) -> std::io::Result<()> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
-    // Written as the table writes its numbers.
-    let angle = |k: QuantityKind, v: f64| Number(if deg && k == QuantityKind::Angle { v.to_degrees() } else { v });
+    // Written as the table writes its numbers (a zero without a sign).
+    let angle = |k: QuantityKind, v: f64| {
+        Number(crate::csv_rows::unsigned_zero(if deg && k == QuantityKind::Angle { v.to_degrees() } else { v }))
+    };
     let ni = model.inputs().len();
     let Some(file) = file else {
         for e in events {

@@ -1151,3 +1151,64 @@ fn names_with_spaces_around_them_are_the_names() {
         let _ = std::fs::remove_file(file);
     }
 }
+
+/// A value that is zero is written `0` in every CSV, whatever sign the arithmetic left on it:
+/// the in-line slider-crank at its inner dead centre (`e = 0`, `phi = 0`) has by hand
+/// `x' = -r sin(phi) (1 + r cos(phi) / sqrt(l^2 - r^2 sin^2(phi))) = 0` and
+/// `psi'' = 0` (`sin(psi) = r sin(phi) / l`, whose second derivative carries `sin(phi)`), which
+/// were written `-0`; and an engine without loads has a mean torque of 0, written `0` on
+/// standard error and `-0` into `--flywheel`.
+#[test]
+fn a_zero_is_written_without_a_sign() {
+    let slider = shipped("slider_crank.kl");
+    let params = "r=1,l=3,e=0";
+    let tmp = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let flywheel = tmp.join("unsigned_zero_flywheel.csv").display().to_string();
+    let events = tmp.join("unsigned_zero_events.csv").display().to_string();
+    let engine = shipped("engine.kl");
+    let unloaded = "p0=0,c=0,t_load=0,g=0,e=0";
+    let runs: [&[&str]; 5] = [
+        &[
+            "sweep",
+            &slider,
+            "--params",
+            params,
+            "--from",
+            "0",
+            "--to",
+            "360",
+            "--deg",
+            "--samples",
+            "9",
+            "--events",
+            &events,
+        ],
+        &["solve", &slider, "--params", params, "--at", "0", "--deg"],
+        &["trace", &slider, "--params", params, "--from", "0", "--to", "90", "--deg", "--max-points", "3"],
+        &["extremes", &slider, "--params", params, "--from", "-90", "--to", "90", "--deg", "--columns", "psi"],
+        &["dynamics", &engine, "--params", unloaded, "--speed", "150", "--samples", "8", "--flywheel", &flywheel],
+    ];
+    for args in runs {
+        let out = kinloop(args);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        let signed =
+            |text: &str| text.lines().flat_map(|l| l.split(',')).any(|f| f.parse() == Ok(0.0) && f.starts_with('-'));
+        assert!(!signed(&text), "{args:?}: {text}");
+        let _ = std::fs::remove_file(&events);
+    }
+    // The zeros by hand are there, written `0`.
+    let out = kinloop(runs[1]);
+    let (header, rows) = csv(&out);
+    let at = |name: &str| header.iter().position(|h| h.starts_with(name)).expect(name);
+    let line = String::from_utf8_lossy(&out.stdout).lines().nth(1).expect("a row").to_string();
+    let fields: Vec<&str> = line.split(',').collect();
+    for column in ["d(x)/d(phi)", "d2(psi)/d(phi)^2"] {
+        assert_eq!(rows[0][at(column)], 0.0, "{line}");
+        assert_eq!(fields[at(column)], "0", "{column}: {line}");
+    }
+    let written = std::fs::read_to_string(&flywheel).expect("the flywheel file");
+    let _ = std::fs::remove_file(&flywheel);
+    let values: Vec<&str> = written.lines().nth(1).expect("a row").split(',').collect();
+    assert_eq!(values[1], "0", "mean_torque: {written}");
+}
