@@ -43,6 +43,13 @@ fn unit(k: QuantityKind, deg: bool) -> &'static str {
     if deg && k == QuantityKind::Angle { "deg" } else { k.unit() }
 }
 
+/// The unit the input `name` of kind `k` is written in: as [`unit`], but `unit of t` for an
+/// input of no inferred kind (a time `t`), as `sweep` writes it: such an input had no unit
+/// here (`t at min`) where the sweep's table wrote `t [unit of t]`.
+fn input_unit(name: &str, k: QuantityKind, deg: bool) -> String {
+    if deg && k == QuantityKind::Angle { "deg".to_string() } else { k.input_unit(name).into_owned() }
+}
+
 /// A value of kind `k` in the units written (degrees for an angle with `deg`).
 fn written(k: QuantityKind, deg: bool, v: f64) -> f64 {
     if deg && k == QuantityKind::Angle { degrees(v) } else { v }
@@ -144,7 +151,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let input_units: Vec<&str> = input_kinds.iter().map(|k| unit(*k, req.deg)).collect();
+    let input_units: Vec<String> =
+        input_names.iter().zip(&input_kinds).map(|(n, k)| input_unit(n, *k, req.deg)).collect();
+    let input_units: Vec<&str> = input_units.iter().map(String::as_str).collect();
     let text =
         if req.table { table(&rows, &input_names, &input_units) } else { csv(&rows, &input_names, &input_units) };
     crate::output::text(&text, "the extremes")?;
@@ -193,7 +202,7 @@ fn rests_note(
             .zip(input_kinds)
             .zip(inputs.0.iter())
             .map(|((n, k), v)| {
-                format!("{n} = {}{}", Number(six_digits(written(*k, deg, *v))), unit_suffix(unit(*k, deg)))
+                format!("{n} = {}{}", Number(six_digits(written(*k, deg, *v))), unit_suffix(&input_unit(n, *k, deg)))
             })
             .collect();
         parts.join(", ")

@@ -20,16 +20,21 @@ pub fn structure(model: &Model) -> String {
     let _ = writeln!(s, "parameters: {}", if params.is_empty() { "none".to_string() } else { params.join(", ") });
     let quantities = model.quantities();
     let (ni, nu) = (model.inputs().len(), model.unknowns().len());
-    let list = |q: &[(&str, kinloop_runtime::QuantityKind)]| {
+    // An input's unit as the tables write it: `unit of t` for a time `t` (a kind not inferred),
+    // where the report wrote `t` alone and the tables `t [unit of t]`.
+    let list = |q: &[(&str, kinloop_runtime::QuantityKind)], input: bool| {
         let v: Vec<String> = q
             .iter()
-            .map(|(n, k)| if k.unit().is_empty() { n.to_string() } else { format!("{n} [{}]", k.unit()) })
+            .map(|(n, k)| {
+                let unit = if input { k.input_unit(n) } else { k.unit().into() };
+                if unit.is_empty() { n.to_string() } else { format!("{n} [{unit}]") }
+            })
             .collect();
         if v.is_empty() { "none".to_string() } else { v.join(", ") }
     };
-    let _ = writeln!(s, "inputs: {}", list(&quantities[..ni]));
-    let _ = writeln!(s, "unknowns: {}", list(&quantities[ni..ni + nu]));
-    let _ = writeln!(s, "outputs: {}", list(&quantities[ni + nu..]));
+    let _ = writeln!(s, "inputs: {}", list(&quantities[..ni], true));
+    let _ = writeln!(s, "unknowns: {}", list(&quantities[ni..ni + nu], false));
+    let _ = writeln!(s, "outputs: {}", list(&quantities[ni + nu..], false));
     let (registers, instructions) = (Count(model.registers(), "register"), Count(model.instructions(), "instruction"));
     let _ = writeln!(s, "run-time program: {registers}, {instructions}");
     s

@@ -380,3 +380,31 @@ fn a_column_standing_still_has_its_rests_noted() {
     // Every column the cam moves rests with it; `follower.x`, constant, has no note.
     assert!(err.lines().filter(|l| l.starts_with("note: ")).count() == 5 && !err.contains("follower.x"), "{err}");
 }
+
+/// A time input (`t`, of no inferred kind) has its unit in the header as the sweep's table and
+/// `check` write it, `t at min [unit of t]`: it had none (`t at min`), where the sweep wrote
+/// `t [unit of t]` and `check` listed `t` alone. The slider of a crank turned at `w` per unit of
+/// `t` is farthest out, by hand, at `w t = pi`, `x = -(r + l)`.
+#[test]
+fn a_time_input_has_its_unit() {
+    let file = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("extremes_timed.kl");
+    let text = "pub struct Timed {
+        params r = 1, l = 3, w = 2;
+        input t;
+        unknowns psi = 0, x = -2;
+        loop oabo: r @ (w * t) == (x, 0) + l @ psi;
+    }";
+    std::fs::write(&file, text).expect("write the declaration");
+    let f = file.display().to_string();
+    let (header, rows) = csv(&kinloop(&["extremes", &f, "--from", "0", "--to", "3", "--columns", "x"]));
+    assert_eq!(header, ["column", "unit", "min", "t at min [unit of t]", "max", "t at max [unit of t]"]);
+    let (_, x) = row(&rows, "x");
+    assert!((x[0] - -4.0).abs() <= 1e-12 && (x[1] - std::f64::consts::FRAC_PI_2).abs() <= 1e-10, "{x:?}");
+    let table = String::from_utf8(kinloop(&["extremes", &f, "--from", "0", "--to", "3", "--table"]).stdout);
+    assert!(table.expect("utf-8").lines().next().is_some_and(|h| h.contains("t at max [unit of t]")));
+    let sweep = String::from_utf8(kinloop(&["sweep", &f, "--from", "0", "--to", "1", "--samples", "2"]).stdout);
+    assert!(sweep.expect("utf-8").starts_with("t [unit of t],"));
+    let check = String::from_utf8(kinloop(&["check", &f]).stdout).expect("utf-8");
+    assert!(check.contains("inputs: t [unit of t]\n"), "{check}");
+    let _ = std::fs::remove_file(&file);
+}
