@@ -183,6 +183,13 @@ fn bounds(spec: &str, what: &str) -> Result<(f64, f64), Failed> {
     let Some((lo, hi)) = spec.split_once("..") else {
         return Err(exit::usage(not_bounds));
     };
+    // Three dots (`0...5`) split as `0` and `.5`: read as 0..0.5 without a word, where 0..5 may
+    // be meant.
+    if hi.trim_start().starts_with('.') {
+        return Err(exit::usage(format!(
+            "{not_bounds}: it has three dots or more between the bounds; write two (`0..5`, or `0..0.5` for a bound              of .5)"
+        )));
+    }
     match (number(lo), number(hi)) {
         (Ok(lo), Ok(hi)) if lo.is_finite() && hi.is_finite() && lo <= hi => Ok((lo, hi)),
         (Err(e), _) | (_, Err(e)) => Err(exit::usage(format!("{not_bounds}: {e}"))),

@@ -536,3 +536,27 @@ fn max_error_in_the_unit_of_the_errors_rejects_a_far_fit() {
         assert!(String::from_utf8_lossy(&o.stderr).contains("--max-error"), "{bad}");
     }
 }
+
+/// Bounds written with three dots (`0...5`) are a usage error saying to write two: they split
+/// as `0` and `.5` and were searched as 0..0.5 without a word, where 0..5 may be meant; so for
+/// `--range`.
+#[test]
+fn bounds_with_three_dots_are_a_usage_error() {
+    let targets = untimed_targets("synth_three_dots.csv");
+    let four_bar = shipped("coupler_four_bar.kl");
+    for (option, value, says) in [
+        ("--vary", "a=0...5,b=2..3.5", "the range of `a` in --vary `0...5`"),
+        ("--vary", "a=0.8..1.4,b=2....3.5", "the range of `b` in --vary `2....3.5`"),
+        ("--range", "0...6", "--range `0...6`"),
+    ] {
+        let mut args = vec!["synth", &four_bar, "--targets", &targets, "--path", "p", "--starts", "1", option, value];
+        if option == "--range" {
+            args.extend(["--vary", "a=0.8..1.4"]);
+        }
+        let o = kinloop(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{value}: {err}");
+        assert!(err.contains(says) && err.contains("three dots"), "{value}: {err}");
+        assert!(o.stdout.is_empty(), "{value}");
+    }
+}
