@@ -38,6 +38,9 @@ fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
     let mut rows: Vec<Vec<f64>> = Vec::new();
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {
+        if let Some(why) = line.split(',').find_map(underflow) {
+            return Err(format!("line {}: {why}", n + 1));
+        }
         let row: Result<Vec<f64>, _> = line.split(',').map(|v| v.trim().parse::<f64>()).collect();
         match row {
             Ok(row) if row.iter().all(|v| v.is_finite()) => {
@@ -69,6 +72,15 @@ fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
         return Err("holds no targets".to_string());
     }
     Ok(rows)
+}
+
+/// Why the field `field` is refused where it reads as a number too small for a double
+/// (`1e-400`, which `f64` reads as 0), as the command line refuses it
+/// ([`crate::numbers::number`]): a target at 0 that was not written so. `None` for any other
+/// field.
+fn underflow(field: &str) -> Option<String> {
+    let zero = field.trim().parse::<f64>().is_ok_and(|v| v == 0.0);
+    if zero { crate::numbers::number(field).err() } else { None }
 }
 
 /// Whether the first line `line` is a header: none of its fields is a number (one with a typo
@@ -151,6 +163,18 @@ mod tests {
         assert_eq!(rows("\u{feff}1,2\r\n3,4\r\n"), Ok(vec![vec![1.0, 2.0], vec![3.0, 4.0]]));
         assert_eq!(rows("\u{feff}x,y\n1,2\n"), Ok(vec![vec![1.0, 2.0]]));
         assert!(rows("1,2\n\u{feff}3,4\n").is_err());
+    }
+
+    /// A number too small for a double (it reads as 0) is refused where it is, as on the
+    /// command line; zeros written as zeros are targets.
+    #[test]
+    fn a_number_too_small_for_a_double_is_an_error_where_it_is() {
+        for (text, line) in [("1e-400,2\n3,4\n", 1), ("1,2\n3, -2.5e-330\n", 2)] {
+            let e = rows(text).expect_err(text);
+            assert!(e.starts_with(&format!("line {line}: `")), "{text:?}: {e}");
+            assert!(e.contains("too small for a 64-bit float"), "{text:?}: {e}");
+        }
+        assert_eq!(rows("0,-0.0\n0e-400,5e-324\n"), Ok(vec![vec![0.0, -0.0], vec![0.0, 5e-324]]));
     }
 
     #[test]

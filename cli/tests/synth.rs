@@ -307,6 +307,8 @@ fn bad_targets_files_are_usage_errors_naming_the_file_and_line() {
         ("synth_first_semicolon.csv", "10;1.0;2.0\n20,1.5,2.2\n", "line 1, column 3: `;` between numbers"),
         ("synth_decimal_comma.csv", "# phi;x;y\n10;0,97;1,49\n", "line 2, column 3: `;` between numbers"),
         ("synth_tab.csv", "phi\tx\ty\n10\t1.0\t2.0\n", "line 2, column 3: a tab between numbers"),
+        // A number too small for a double, read as 0 without a word.
+        ("synth_underflow.csv", "10,1.0,2.0\n20,1e-400,2.2\n", "line 2: `1e-400` is too small for a 64-bit float"),
         // Nothing but a header and a comment.
         ("synth_empty.csv", "phi,x,y\n# none\n", "holds no targets"),
         ("synth_nothing.csv", "", "holds no targets"),
