@@ -9,7 +9,7 @@ use crate::sweep::{range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
-use kinloop_runtime::{Error, Event, Number, QuantityKind, Table, TraceConfig, TracedOf, TracedPointOf};
+use kinloop_runtime::{Error, Event, Location, Number, QuantityKind, Table, TraceConfig, TracedOf, TracedPointOf};
 use std::path::Path;
 
 /// What `kinloop trace` was asked.
@@ -141,10 +141,28 @@ fn write_points(
     for p in &traced.points {
         let (x, q): (&[f64], &[f64]) = (p.x.as_ref(), p.q.as_ref());
         model.outputs_at(x, q, &mut outputs).map_err(|e| failed(&e))?;
+        // An output that is not finite (the declaration's expression out of its domain there:
+        // `sqrt(sin(phi))` past `phi = pi`) fails the trace at that point, the points before it
+        // written, as a sweep fails at its state: it was written `NaN` with success.
+        if let Some(k) = outputs.iter().position(|v| !v.is_finite()) {
+            rows.finish().map_err(|e| output::failed("the table", e))?;
+            return Err(output_not_finite(model, x, k, &kinds[..x.len()], req.deg));
+        }
         row.clear();
         row.extend(x.iter().chain(q).chain(&outputs).zip(kinds).map(|(v, k)| angle(*k, *v)));
         rows.row(&row).map_err(|e| output::failed("the table", e))?;
     }
     rows.finish().map_err(|e| output::failed("the table", e))?;
     Ok(())
+}
+
+/// The failure of the output `k` of `model`, not finite at the inputs `x` (of kinds `kinds`) of
+/// a traced point: the error a solve there reports ([`Error::Domain`] of the output, at the
+/// inputs, in degrees with `deg`), exit code 1.
+fn output_not_finite(model: &Model, x: &[f64], k: usize, kinds: &[QuantityKind], deg: bool) -> Failed {
+    let inputs = model.inputs().iter().map(|n| std::borrow::Cow::Owned(n.clone())).zip(x.iter().copied()).collect();
+    let at = Location { mechanism: std::borrow::Cow::Owned(model.name().to_string()), inputs, block: None };
+    let name = std::borrow::Cow::Owned(model.outputs()[k].clone());
+    let e = Error::Domain { what: "output", name, at: Box::new(at) };
+    solve_failed(model.name(), e, kinds, deg)
 }

@@ -266,3 +266,36 @@ fn a_declaration_without_unknowns_is_traced() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An output that is not finite at a traced point (`sqrt(sin(phi))` past `phi = pi`, by hand)
+/// fails the trace there, exit code 1, naming the output and the input, as `solve` and `sweep`
+/// fail: the trace wrote it `NaN` and succeeded. The points before it are written, each with
+/// the output of the closed form.
+#[test]
+fn an_output_that_is_not_finite_fails_the_trace() {
+    let file = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("trace_not_finite.kl");
+    let text = "pub struct Rooted {
+        params r = 1, l = 3;
+        input phi;
+        unknowns psi = 0, x = -2;
+        loop oabo: r @ phi == (x, 0) + l @ psi;
+        point q = (sqrt(sin(phi)), 0);
+    }";
+    std::fs::write(&file, text).expect("write the declaration");
+    let f = file.display().to_string();
+    let out = kinloop(&["trace", &f, "--from", "3", "--to", "4", "--ds", "0.05"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("the output `q.x` is not finite in `Rooted` at phi = "), "{err}");
+    let at: f64 = err.split("at phi = ").nth(1).and_then(|s| s.split(':').next()).expect("phi").parse().expect("phi");
+    assert!(at > std::f64::consts::PI && at <= 4.0, "{err}");
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let rows: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect();
+    assert!(!rows.is_empty(), "{text}");
+    for r in &rows {
+        // The output's own expression, evaluated the same way: to the rounding.
+        assert!(r[3].is_finite() && (r[3] - r[0].sin().sqrt()).abs() <= 1e-15, "{r:?}");
+    }
+    let _ = std::fs::remove_file(&file);
+}
