@@ -5,23 +5,52 @@
 /// A count: a whole number written in decimal digits, 0 or more. Its bounds (at least 1 or 3,
 /// at most a limit) are the commands' checks, which name them.
 pub fn count(text: &str) -> Result<usize, String> {
+    whole(text, "a count", "361")
+}
+
+/// A seed (`synth --seed`): a whole number written in decimal digits, from 0 to the largest
+/// 64-bit one, read as a count is (spaces around it allowed, what is wrong said in words:
+/// Rust's own message was "invalid digit found in string" for ` 5`, `-1` and `1.5` alike).
+pub fn seed(text: &str) -> Result<u64, String> {
+    whole(text, "a seed", "7")
+}
+
+/// A whole number of type `T` in `text` (trimmed), or what is wrong with it, naming the number
+/// as `what` and giving `example`.
+fn whole<T: std::str::FromStr>(text: &str, what: &str, example: &str) -> Result<T, String> {
     let digits = text.trim();
-    if let Ok(n) = digits.parse::<usize>() {
+    if let Ok(n) = digits.parse::<T>() {
         return Ok(n);
     }
     Err(match digits.parse::<f64>() {
-        Ok(v) if v < 0.0 => "a count cannot be negative: give a whole number such as 361".into(),
+        Ok(v) if v < 0.0 => format!("{what} cannot be negative: give a whole number such as {example}"),
         Ok(v) if v.is_finite() && v.fract() == 0.0 && digits.bytes().all(|b| b.is_ascii_digit()) => {
-            format!("{digits} is beyond any count this command takes")
+            format!("{digits} is beyond any {} this command takes", what.trim_start_matches("a "))
         }
-        Ok(_) => "a count is a whole number written in digits, such as 361".into(),
-        Err(_) => "not a number: a count is a whole number written in digits, such as 361".into(),
+        Ok(_) => format!("{what} is a whole number written in digits, such as {example}"),
+        Err(_) => format!("not a number: {what} is a whole number written in digits, such as {example}"),
     })
 }
 
 #[cfg(test)]
 mod tests {
-    use super::count;
+    use super::{count, seed};
+
+    /// A seed is read as a count is, up to the largest 64-bit number.
+    #[test]
+    fn seeds_and_what_is_not_one() {
+        assert_eq!(seed(" 5 "), Ok(5));
+        assert_eq!(seed("18446744073709551615"), Ok(u64::MAX));
+        for (text, says) in [
+            ("-1", "a seed cannot be negative"),
+            ("1.5", "a seed is a whole number written in digits, such as 7"),
+            ("x", "not a number"),
+            ("18446744073709551616", "beyond any seed"),
+        ] {
+            let e = seed(text).expect_err(text);
+            assert!(e.contains(says), "{text}: {e}");
+        }
+    }
 
     /// Whole numbers in digits are counts; anything else is refused saying what to write.
     #[test]

@@ -452,7 +452,7 @@ enum Command {
         #[arg(long, default_value_t = 64, allow_hyphen_values = true, value_parser = count::count)]
         starts: usize,
         /// The seed of the starts' sequence.
-        #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0, allow_hyphen_values = true, value_parser = count::seed)]
         seed: u64,
         /// The number of ranked candidates written.
         #[arg(long, default_value_t = 10, allow_hyphen_values = true, value_parser = count::count)]

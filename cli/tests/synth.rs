@@ -562,3 +562,24 @@ fn bounds_with_three_dots_are_a_usage_error() {
         assert!(o.stdout.is_empty(), "{value}");
     }
 }
+
+/// `--seed` is read as the counts are: with spaces around it (the same candidates as without),
+/// and what is wrong with one said in words. It was read by Rust's own parsing, whose message
+/// for ` 5`, `-1` and `1.5` alike was "invalid digit found in string".
+#[test]
+fn a_seed_is_read_as_a_count() {
+    let targets = untimed_targets("synth_seed.csv");
+    let four_bar = shipped("coupler_four_bar.kl");
+    let args =
+        ["synth", &four_bar, "--targets", &targets, "--path", "p", "--vary", "a=0.8..1.4", "--starts", "2", "--csv"];
+    let spaced = kinloop(&[&args[..], &["--seed", " 5 "]].concat());
+    let plain = kinloop(&[&args[..], &["--seed", "5"]].concat());
+    assert!(spaced.status.success(), "{}", String::from_utf8_lossy(&spaced.stderr));
+    assert_eq!(spaced.stdout, plain.stdout);
+    for (seed, says) in [("-1", "a seed cannot be negative"), ("1.5", "a seed is a whole number written in digits")] {
+        let o = kinloop(&[&args[..], &["--seed", seed]].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{seed}: {err}");
+        assert!(err.contains(says), "{seed}: {err}");
+    }
+}
