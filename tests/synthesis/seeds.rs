@@ -65,6 +65,41 @@ fn freudenstein_s_log10_generator_seeds_a_function_generation_problem() {
     }
 }
 
+/// A weight on the output angle of an angle-only task only scales its residuals: the same
+/// design, to the bit, with weights from 2^-600 to 2^100 (powers of two: the residuals exactly
+/// scaled), and it is the 50-digit closed form's. The residual tolerance was a radian times
+/// `1e-14` whatever the weight: at 2^-600 every start counted as converged where it began, the
+/// best 0.56 rad off the points.
+#[test]
+fn a_uniform_weight_on_an_output_angle_finds_the_same_design() {
+    let map = FunctionMap::new(f64::log10, 1.0, 2.0, deg(60.0), deg(90.0), deg(90.0), deg(90.0)).unwrap();
+    let points = map.precision_points(f64::log10, &chebyshev_points(3, 1.0, 2.0).unwrap()).unwrap();
+    let four_bar = FourBar::from_function_generator(&freudenstein(&points).unwrap(), &points).unwrap();
+    let design = Design::new().var("a", 0.5, 8.0).var("b", 0.5, 8.0).var("c", 0.5, 8.0);
+    let run = |w: f64| {
+        let task = Task::function("psi", points.iter().map(|p| (p.phi, p.psi))).with_weights(vec![w]);
+        let problem = Problem::new(FunctionFourBar::default(), &design, &task)
+            .unwrap()
+            .with_guess([four_bar.couplers[0], four_bar.outputs[0]])
+            .unwrap();
+        Search::default().with_starts(0..8).run(&problem).unwrap()
+    };
+    let one = run(1.0);
+    for e in [-600, -40, 100] {
+        let w = 2f64.powi(e);
+        let report = run(w);
+        let best = report.best().unwrap();
+        // The error of a target is its weighted residual: an angle's difference times `w`.
+        assert!(best.max_error <= RESIDUAL * w, "weight 2^{e}: output angle error {:e} rad", best.max_error / w);
+        for (got, name) in best.values.iter().zip(["input", "coupler", "output"]) {
+            let want = log10_reference(name);
+            assert!((got - want).abs() <= 1e-13 * want, "weight 2^{e}, {name}: {got} vs {want}");
+        }
+        assert_eq!(best.values, one.best().unwrap().values, "weight 2^{e}");
+        assert_eq!((report.valid, report.evaluations), (one.valid, one.evaluations), "weight 2^{e}");
+    }
+}
+
 /// `burmester_five_poses.csv`: five poses of a four-bar's coupler and mpmath's Burmester pairs
 /// (center point, circle point in the first pose), sorted by the center's x.
 fn five_poses() -> (Vec<Pose>, Vec<(Vec2, Vec2)>) {

@@ -16,7 +16,8 @@ pub struct LocalConfig {
     /// Stop after this many evaluations of the residuals and Jacobian (default `100`).
     pub max_evaluations: usize,
     /// Converged when the residual norm is at most `tol` times the size of the targets
-    /// (their largest distance from their centroid; default `1e-14`, rounding).
+    /// (their largest weighted distance from their centroid; a radian times the largest angle
+    /// weight where every target is an angle; default `1e-14`, rounding).
     pub tol: f64,
     /// Converged when an accepted step changes no unknown by more than `step_tol` times its
     /// size (`|dz_i| <= step_tol (|z_i| + step_tol w_i)`, `w_i` the width of its bounds, or its

@@ -5,7 +5,7 @@
 
 use super::constraints::Constraints;
 use super::error::SynthesisError;
-use super::resolve::{Inputs, Resolved, column_kind, resolve_channel, resolve_timing, scalar_column, target_scale};
+use super::resolve::{Inputs, Resolved, column_kind, resolve_channel, resolve_timing, scalar_column, target_size};
 use super::task::{Channel, PlacementBounds, Task};
 use super::vars::{Bound, Design, check_bounds, param_index};
 use crate::analysis::ColumnIndex;
@@ -73,9 +73,12 @@ pub struct ProblemOf<K: Kernel> {
     pub(crate) guess: Guess<Q<K>>,
     pub(crate) newton: NewtonConfig,
     pub(crate) sweep: SweepConfig,
-    /// The size of the targets (their largest distance from their centroid, 1 without
-    /// lengths): the unit of the search's residual tolerance.
+    /// The size of the targets (their largest weighted distance from their centroid; a
+    /// radian times the largest angle weight without lengths): the unit of the search's
+    /// residual tolerance.
     pub(crate) scale: f64,
+    /// The unit positions' lengths are compared in (the same size of the lengths, 1 without).
+    pub(crate) length: f64,
 }
 
 impl<M, const N: usize, const NI: usize, const NO: usize, const NP: usize> Problem<M, N, NI, NO, NP>
@@ -145,7 +148,7 @@ impl<K: SensKernel> ProblemOf<K> {
                 return Err(SynthesisError::BadBounds { name: "scale".into(), lo: p.scale.0, hi: p.scale.1 });
             }
         }
-        let scale = target_scale(&channels, &targets, width);
+        let size = target_size(&channels, &targets, width);
         let p = ProblemOf {
             base: kernel,
             names,
@@ -159,7 +162,8 @@ impl<K: SensKernel> ProblemOf<K> {
             guess: Guess::Declared,
             newton: NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16),
             sweep: SweepConfig::default(),
-            scale,
+            scale: size.residual,
+            length: size.length,
         };
         let (residuals, variables) = (p.targets.len(), p.dims());
         if residuals < variables && !design.is_underdetermined() {

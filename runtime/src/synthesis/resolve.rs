@@ -132,12 +132,37 @@ pub(crate) fn resolve_timing<D: Dims>(d: D, timing: &Timing, targets: usize) -> 
     }
 }
 
-/// The largest distance of the targets' lengths from their centroid: what the residual
-/// tolerance is relative to. Where all coincide, the largest magnitude of a target's lengths
-/// (its distance from the origin, in the mechanism's units: a tolerance of 1 was 1e-14 of a
-/// millimetre in millimetres and of a metre in metres); 1 where none is a length (angles) or
-/// every one is 0.
-pub(crate) fn target_scale(channels: &[(Resolved, f64)], targets: &[f64], width: usize) -> f64 {
+/// The size of a task's targets: the unit of its residuals and the unit of its lengths.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TargetSize {
+    /// The unit of the weighted residuals, what the search's residual tolerance is relative to:
+    /// the weighted size of the lengths among the targets; where there is none, a radian times
+    /// the largest weight of an angle channel (a weight scales every residual of an angle-only
+    /// task, and the tolerance must scale with them: fixed at 1, a weight of 1e-13 made a start
+    /// 0.05 rad off converged); 1 where there is neither.
+    pub residual: f64,
+    /// The unit of a length of the mechanism, what its positions are compared in: the weighted
+    /// size of the lengths among the targets, 1 where there is none (angles compare in radians).
+    pub length: f64,
+}
+
+/// The sizes of the targets ([`TargetSize`]): the largest distance of the targets' lengths from
+/// their centroid. Where all coincide, the largest magnitude of a target's lengths (its
+/// distance from the origin, in the mechanism's units: a tolerance of 1 was 1e-14 of a
+/// millimetre in millimetres and of a metre in metres).
+pub(crate) fn target_size(channels: &[(Resolved, f64)], targets: &[f64], width: usize) -> TargetSize {
+    let angle_weight = channels
+        .iter()
+        .filter(|(c, _)| matches!(c, Resolved::Angle { .. }))
+        .map(|&(_, w)| w)
+        .fold(None, |m: Option<f64>, w| Some(m.map_or(w, |m| m.max(w))));
+    let lengths = length_scale(channels, targets, width);
+    TargetSize { residual: lengths.or(angle_weight).unwrap_or(1.0), length: lengths.unwrap_or(1.0) }
+}
+
+/// The largest weighted distance of the targets' lengths from their centroid, or else their
+/// largest weighted magnitude; `None` where no target is a length or every one is 0.
+fn length_scale(channels: &[(Resolved, f64)], targets: &[f64], width: usize) -> Option<f64> {
     let (mut scale, mut magnitude): (f64, f64) = (0.0, 0.0);
     let mut at = 0;
     for (c, w) in channels {
@@ -162,11 +187,11 @@ pub(crate) fn target_scale(channels: &[(Resolved, f64)], targets: &[f64], width:
         };
     }
     if scale > 0.0 && scale.is_finite() {
-        scale
+        Some(scale)
     } else if magnitude > 0.0 && magnitude.is_finite() {
-        magnitude
+        Some(magnitude)
     } else {
-        1.0
+        None
     }
 }
 
@@ -182,16 +207,23 @@ mod tests {
         let point = [(Resolved::Point(ColumnIndex::Output(0), ColumnIndex::Output(1)), 1.0)];
         let value = [(Resolved::Value(ColumnIndex::Unknown(2)), 1.0)];
         for k in [1.0, 1e3, 1e-6, 1e-9] {
-            let apart = target_scale(&point, &[0.0, 0.0, 3.0 * k, 4.0 * k], 2);
+            let apart = target_size(&point, &[0.0, 0.0, 3.0 * k, 4.0 * k], 2).residual;
             assert!((apart / k - 2.5).abs() < 1e-15, "{k}: {apart}");
-            let together = target_scale(&value, &[3.4 * k, 3.4 * k], 1);
+            let together = target_size(&value, &[3.4 * k, 3.4 * k], 1).residual;
             assert!((together / k - 3.4).abs() < 1e-15, "{k}: {together}");
-            let points = target_scale(&point, &[3.0 * k, 4.0 * k, 3.0 * k, 4.0 * k], 2);
+            let points = target_size(&point, &[3.0 * k, 4.0 * k, 3.0 * k, 4.0 * k], 2).residual;
             assert!((points / k - 5.0).abs() < 1e-15, "{k}: {points}");
         }
         // Only angles, or every length 0: the radian.
         let angle = [(Resolved::Angle { col: ColumnIndex::Unknown(0), rotates: false }, 1.0)];
-        assert_eq!(target_scale(&angle, &[0.3, 0.7], 1), 1.0);
-        assert_eq!(target_scale(&value, &[0.0, 0.0], 1), 1.0);
+        assert_eq!(target_size(&angle, &[0.3, 0.7], 1), TargetSize { residual: 1.0, length: 1.0 });
+        assert_eq!(target_size(&value, &[0.0, 0.0], 1), TargetSize { residual: 1.0, length: 1.0 });
+        // Weighted angles alone: their residuals are a radian times the weight; lengths still
+        // compare in the unit 1.
+        let weighted = [(Resolved::Angle { col: ColumnIndex::Unknown(0), rotates: false }, 0.25)];
+        assert_eq!(target_size(&weighted, &[0.3, 0.7], 1), TargetSize { residual: 0.25, length: 1.0 });
+        // With lengths among the targets, the lengths set the residuals' unit.
+        let both = [(Resolved::Value(ColumnIndex::Unknown(2)), 1.0), weighted[0]];
+        assert_eq!(target_size(&both, &[0.0, 0.3, 4.0, 0.7], 2), TargetSize { residual: 2.0, length: 2.0 });
     }
 }

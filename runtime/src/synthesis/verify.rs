@@ -195,7 +195,7 @@ impl<K: SensKernel> ProblemOf<K> {
             // No motion between two targets at one input: the same position, or two assembly
             // modes at once (each target met on its own, no sweep to tell).
             if inputs[k].as_ref() == inputs[k - 1].as_ref() {
-                if same_position(m, e.qs[k - 1].as_ref(), e.qs[k].as_ref(), self.scale) {
+                if same_position(m, e.qs[k - 1].as_ref(), e.qs[k].as_ref(), self.length) {
                     continue;
                 }
                 defects.push(Defect::Branch { target: k });
@@ -212,7 +212,7 @@ impl<K: SensKernel> ProblemOf<K> {
             let defect = match run {
                 Ok(r) => match (&r.stop, r.states.last()) {
                     (SweepStop::Completed, Some(last)) => {
-                        let reached = same_position(m, last.q(), e.qs[k].as_ref(), self.scale);
+                        let reached = same_position(m, last.q(), e.qs[k].as_ref(), self.length);
                         if self.checks.transmission.is_some() {
                             runs.push(r.states.clone());
                         }
@@ -240,7 +240,7 @@ impl<K: SensKernel> ProblemOf<K> {
             match run {
                 Ok(r)
                     if r.is_completed()
-                        && r.states.last().is_some_and(|l| same_position(m, l.q(), e.qs[0].as_ref(), self.scale)) =>
+                        && r.states.last().is_some_and(|l| same_position(m, l.q(), e.qs[0].as_ref(), self.length)) =>
                 {
                     runs = vec![r.states];
                 }
