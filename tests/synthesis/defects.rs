@@ -125,6 +125,37 @@ fn crank_angles_in_cyclic_order_are_one_motion() {
     }
 }
 
+/// Over a range of crank angles shorter than a turn, the motion stays in it: targets met at
+/// 2.0, 2.8 and 0.2 within `[0, 3]` are out of order (forward from 2.8 to 0.2 the crank turns
+/// through 3 to 2 pi, which the range leaves out; backward it passes 2.0 again). The candidate
+/// was valid, its last input reported as 0.2 + 2 pi, outside the range. Over a whole turn the
+/// same targets are one motion passing the zero.
+#[test]
+fn cyclic_order_needs_a_range_of_a_whole_turn() {
+    let phis = [2.0, 2.8, 0.2];
+    let poses: Vec<([f64; 2], [f64; 2])> = phis.iter().map(|&x| four_bar_pose(FOUR_BAR, x, 1.0)).collect();
+    let [a, b, c, d, e, alpha] = FOUR_BAR;
+    // The targets' inputs whole turns from those they were made at (`shift`).
+    let candidate = |lo: f64, hi: f64, shift: f64| {
+        let task = Task::path("p", poses.iter().map(|(t, _)| *t)).untimed(lo, hi);
+        let problem = Problem::new(CouplerFourBar { a, b, c, d, e, alpha }, &Design::new().var("e", 1.5, 1.9), &task)
+            .unwrap()
+            .with_guesses(poses.iter().map(|(_, q)| *q).collect())
+            .unwrap();
+        verify(&problem, &[e, phis[0] + shift, phis[1] + shift, phis[2] + shift])
+    };
+    let short = candidate(0.0, 3.0, 0.0);
+    assert_eq!(short.defects.first(), Some(&Defect::Order), "{short:?}");
+    let turn = candidate(0.0, TAU, 0.0);
+    assert!(turn.is_valid(), "{turn:?}");
+    assert_close!(turn.inputs[2][0], 0.2 + TAU, crate::support::tol::ULPS * 10.0);
+    // A turn written from another start, whose width rounds to below 2 pi: a turn still.
+    let (lo, hi) = (-6.0 * TAU + 0.2, -5.0 * TAU + 0.2);
+    assert!(hi - lo < TAU);
+    let shifted = candidate(lo, hi, -6.0 * TAU);
+    assert!(shifted.is_valid(), "{shifted:?}");
+}
+
 #[test]
 fn constraints_full_rotation_transmission_and_link_ratio() {
     // The crank-rocker turns fully; its transmission angle is extreme with crank and frame in

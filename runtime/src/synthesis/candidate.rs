@@ -42,9 +42,9 @@ pub struct FourBarClass {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum Defect {
-    /// The free inputs of the targets are not strictly monotone (for an angle input: not in
-    /// cyclic order within one turn either): the targets are not met in the given order along
-    /// one motion (an order defect).
+    /// The free inputs of the targets are not strictly monotone (for an angle input free over at
+    /// least a turn: not in cyclic order within one turn either): the targets are not met in the
+    /// given order along one motion within the inputs' range (an order defect).
     Order,
     /// The sweep from the previous target reaches target `target` on another assembly mode
     /// than the one the targets were met on, or passes a singular crossing (a change point)
@@ -106,7 +106,8 @@ pub struct Candidate {
     /// Every parameter of the mechanism, in declaration order.
     pub params: Vec<f64>,
     /// The input values at which the targets are met (the prescribed ones, or the solved free
-    /// ones; free angles in cyclic order unwrapped by whole turns into one monotone motion).
+    /// ones; free angles in cyclic order, over a range of at least a turn, unwrapped by whole
+    /// turns into one monotone motion).
     pub inputs: Vec<Vec<f64>>,
     /// The placement `[dx, dy, angle, scale]`, where the task has one.
     pub placement: Option<[f64; 4]>,

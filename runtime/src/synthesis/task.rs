@@ -160,7 +160,8 @@ impl Task {
 
     /// The input value of each target is free within `[lo, hi]` (a mechanism with one input);
     /// the targets must be met in order along one monotone motion (so with more than one target
-    /// `lo < hi`).
+    /// `lo < hi`). An angle input free over at least a turn may pass from `hi` back to `lo` (a
+    /// crank passing its zero); over a shorter range the motion stays within it.
     pub fn untimed(mut self, lo: f64, hi: f64) -> Self {
         self.timing = Timing::Free { lo, hi };
         self

@@ -41,9 +41,12 @@ fn same_position<K: SensKernel>(m: &K, a: &[f64], b: &[f64], size: f64) -> bool 
     })
 }
 
-/// The free inputs as one monotone motion: themselves if strictly monotone; for an angle,
-/// also in cyclic order within less than a turn (a crank passing its zero between two targets),
-/// unwrapped by whole turns, in the sense that turns less; `None` otherwise (an order defect).
+/// The free inputs as one monotone motion: themselves if strictly monotone; where the motion
+/// `wraps` (an angle input free over at least a turn), also in cyclic order within less than a
+/// turn (a crank passing its zero between two targets), unwrapped by whole turns, in the sense
+/// that turns less; `None` otherwise (an order defect). Over a range shorter than a turn a
+/// cyclic step passes the inputs the range leaves out (from 2.8 forward to 0.2 over `[0, 3]`
+/// turned the crank through 3 to 2 pi), so there the inputs must be monotone as they are.
 /// An angle input is periodic in every declaration of a mechanism that turns by it (its sines
 /// and cosines); where it is not (a gear ratio that is no integer), the sweep to the unwrapped
 /// input does not reach the solved position, and the candidate has a branch defect instead.
@@ -53,7 +56,7 @@ fn same_position<K: SensKernel>(m: &K, a: &[f64], b: &[f64], size: f64) -> bool 
 /// angle) it is that input, whichever way the rounding of the two solves falls (two apart by
 /// 2e-16 passed, equal ones were an order defect). Distinct targets are met at distinct inputs.
 /// Inputs that are all one are no motion: an order defect.
-fn in_order(x: &[f64], repeat: &[bool], angle: bool) -> Option<Vec<f64>> {
+fn in_order(x: &[f64], repeat: &[bool], angle: bool, wraps: bool) -> Option<Vec<f64>> {
     let span = x.iter().map(|v| (v - x[0]).abs()).fold(0.0, f64::max);
     let tol = SAME_INPUT * if angle { span.max(1.0) } else { span };
     let mut x = x.to_vec();
@@ -71,7 +74,7 @@ fn in_order(x: &[f64], repeat: &[bool], angle: bool) -> Option<Vec<f64>> {
     if monotone(1.0) || monotone(-1.0) {
         return Some(x);
     }
-    if !angle {
+    if !wraps {
         return None;
     }
     [1.0, -1.0]
@@ -183,7 +186,11 @@ impl<K: SensKernel> ProblemOf<K> {
             let free: Vec<f64> = inputs.iter().map(|x| x[0]).collect();
             let row = |k: usize| &self.targets[k * self.width..(k + 1) * self.width];
             let repeat: Vec<bool> = (1..n).map(|k| row(k) == row(k - 1)).collect();
-            match in_order(&free, &repeat, m.input_kind(0) == QuantityKind::Angle) {
+            let angle = m.input_kind(0) == QuantityKind::Angle;
+            // A turn to within the rounding of its ends: `(lo, lo + TAU)` is one whatever `lo`.
+            let turn = |lo: f64, hi: f64| hi - lo >= TAU * (1.0 - SAME_INPUT);
+            let wraps = angle && matches!(self.inputs, Inputs::Free { lo, hi } if turn(lo, hi));
+            match in_order(&free, &repeat, angle, wraps) {
                 Some(x) => inputs = Cow::Owned(x.into_iter().map(|v| self.input_point(v)).collect()),
                 None => defects.push(Defect::Order),
             }
@@ -323,16 +330,16 @@ mod tests {
         for noise in [2e-16, 0.0, -2e-16] {
             let x = [0.1, 0.5, 0.5 + noise, 0.9];
             for angle in [false, true] {
-                assert_eq!(in_order(&x, &repeat, angle), Some(vec![0.1, 0.5, 0.5, 0.9]), "{noise} {angle}");
+                assert_eq!(in_order(&x, &repeat, angle, angle), Some(vec![0.1, 0.5, 0.5, 0.9]), "{noise} {angle}");
                 // Distinct targets at one input: an order defect, as it was.
-                assert_eq!(in_order(&x, &[false; 3], angle).is_some(), noise > 0.0, "{noise} {angle}");
+                assert_eq!(in_order(&x, &[false; 3], angle, angle).is_some(), noise > 0.0, "{noise} {angle}");
             }
         }
-        assert_eq!(in_order(&[0.3, 0.3, 0.3], &[true; 2], true), None);
-        assert_eq!(in_order(&[0.1, 0.5, 0.4999, 0.9], &repeat, false), None);
+        assert_eq!(in_order(&[0.3, 0.3, 0.3], &[true; 2], true, true), None);
+        assert_eq!(in_order(&[0.1, 0.5, 0.4999, 0.9], &repeat, false, false), None);
         // Past the zero of a turn, with a repeat there: unwrapped.
         let x = [TAU - 0.2, TAU - 0.1, TAU - 0.1 + 1e-15, 0.1];
-        let got = in_order(&x, &repeat, true).expect("in cyclic order");
+        let got = in_order(&x, &repeat, true, true).expect("in cyclic order");
         assert_eq!(got[1], got[2]);
         assert!((got[3] - (TAU + 0.1)).abs() < 1e-12, "{got:?}");
     }
