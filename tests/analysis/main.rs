@@ -18,6 +18,7 @@ mod limits_crossing;
 mod limits_extreme_scales;
 mod metrics_mechanisms;
 mod objectives;
+mod periodic_columns;
 mod rests;
 mod sampled_paths;
 mod synthesis;

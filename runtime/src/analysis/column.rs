@@ -11,6 +11,7 @@
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::kin::Kin;
+use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel};
 use std::fmt;
@@ -284,6 +285,15 @@ fn no_column<K: Kernel>(name: &str, k: &K) -> Error {
         unknowns.join(", "),
         outputs.join(", ")
     ))
+}
+
+/// The kind of quantity of column `index` of `k`.
+pub(crate) fn column_kind<K: Kernel>(k: &K, index: ColumnIndex) -> QuantityKind {
+    match index {
+        ColumnIndex::Unknown(u) => k.unknown_kind(u),
+        ColumnIndex::Output(o) => k.output_kind(o),
+        ColumnIndex::Input(i) => k.input_kind(i),
+    }
 }
 
 /// The name of column `index` of `k` (`"?"` outside its ranges).

@@ -2,13 +2,14 @@
 //! over any [`Kernel`] ([`SampledOf`]): a compiled mechanism's, through [`Compiled`], or a
 //! mechanism's read at run time.
 
-use super::column::{ColumnOf, column_name, jet_along};
+use super::column::{ColumnOf, column_kind, column_name, jet_along};
 use super::extremes::{self, GlobalRange, LocalExtreme, maximize};
 use super::{ColumnIndex, Dwell, Fourier, Jet, Rest, Unbalance, dwell, fourier, rest, unbalance};
 use crate::Kernel;
 use crate::dims::{Dims, KinState, Store};
 use crate::error::Error;
 use crate::events::EventKind;
+use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
 use crate::paths::config::SweepConfig;
@@ -828,17 +829,55 @@ impl<K: Kernel> SampledOf<K> {
     fn periodic(&self, c: ColumnIndex) -> Result<Vec<Jet>, Error> {
         let jets = self.jets_of(c);
         let (a, b) = (jets[0].value, jets[jets.len() - 1].value);
-        // Relative to the column's own size, whatever its unit: a floor of one (as it was)
-        // let a sweep short of a turn pass as periodic once the mechanism was a micrometre
-        // across, and half a turn at 1e-12.
-        let scale = jets.iter().map(|j| j.value.abs()).fold(0.0, f64::max);
-        if (a - b).abs() > 1e-9 * scale {
+        if (a - b).abs() > unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, &jets) {
             return Err(Error::InvalidArgument(format!(
                 "`{}` is not periodic over the sweep ({a} at the start, {b} at the end): sweep exactly one cycle",
                 column_name(&self.k, c)
             )));
         }
         Ok(jets)
+    }
+
+    /// The size against which a column's rounding is judged: its own largest magnitude, and at
+    /// least what its kind's values are computed from. A column that stands still in exact
+    /// arithmetic (a parallelogram's coupler angle, a point's coordinate on a line of symmetry)
+    /// is rounding alone, some 1e-16 of the quantities it is solved from: against its own size
+    /// that noise is all there is, and a turn of it was "not periodic".
+    ///
+    /// * an angle: at least `pi`, the size of any angle (its rounding is absolute, a few ulps of
+    ///   the angles summed and the `atan2`s taken, whatever the angle's own value);
+    /// * a length: at least the largest length of any column over the samples, the
+    ///   mechanism's own size (not an absolute floor: the unit of length is the user's, and a
+    ///   mechanism a micrometre across is judged as one a metre across);
+    /// * anything else (a ratio, a time): its own size alone; kinloop does not know what it is
+    ///   computed from.
+    fn natural_scale(&self, c: ColumnIndex, jets: &[Jet]) -> f64 {
+        let own = jets.iter().map(|j| j.value.abs()).fold(0.0, f64::max);
+        match column_kind(&self.k, c) {
+            QuantityKind::Angle => own.max(std::f64::consts::PI),
+            QuantityKind::Length => own.max(self.length_scale()),
+            _ => own,
+        }
+    }
+
+    /// The largest magnitude of any length column (input, unknown or output) over the samples:
+    /// the size of the mechanism in its own unit of length (0 without length columns).
+    fn length_scale(&self) -> f64 {
+        let d = self.k.dims();
+        let columns = (0..d.ni())
+            .map(ColumnIndex::Input)
+            .chain((0..d.n()).map(ColumnIndex::Unknown))
+            .chain((0..d.no()).map(ColumnIndex::Output))
+            .filter(|&c| column_kind(&self.k, c) == QuantityKind::Length);
+        let value = |c: ColumnIndex, st: &KinOf<K>| match c {
+            ColumnIndex::Input(i) => st.x()[i],
+            ColumnIndex::Unknown(u) => st.q()[u],
+            ColumnIndex::Output(o) => st.out()[o],
+        };
+        columns
+            .flat_map(|c| self.states.iter().map(move |st| value(c, st).abs()))
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
     }
 
     /// Fourier coefficients of a column up to `harmonics`, the sweep being one period (`n + 1`
@@ -856,6 +895,7 @@ impl<K: Kernel> SampledOf<K> {
     pub fn unbalance(&self, c: impl ColumnOf<K>, removed: usize) -> Result<Unbalance, Error> {
         let c = c.resolve(&self.k)?;
         let jets = self.periodic(c)?;
-        unbalance::unbalance(&jets, self.eval(c), removed)
+        let scale = self.natural_scale(c, &jets);
+        unbalance::unbalance_at_scale(&jets, self.eval(c), removed, scale)
     }
 }

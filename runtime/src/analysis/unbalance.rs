@@ -16,6 +16,12 @@ use super::extremes::{check_increasing, extremes};
 use super::fourier::{Fourier, fourier};
 use crate::error::Error;
 
+/// How far, relative to a quantity's size, its last sample over a period may differ from its
+/// first for the samples to be one period: a thousand times the rounding a solve leaves in a
+/// mechanism's positions (Newton's residual tolerance, 1e-12 of the mechanism's size), far below
+/// what a sweep a step short of a cycle leaves.
+pub const PERIODIC_TOLERANCE: f64 = 1e-9;
+
 /// The unbalance left in a periodic quantity after removing harmonics `0 ..= removed`: the
 /// residual `v - v_m` and its largest magnitude.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,8 +42,10 @@ pub struct Unbalance {
 /// the period.
 ///
 /// Errors (`InvalidArgument`): samples not equally spaced, or whose last value does not repeat
-/// the first (to `1e-9` of the largest magnitude, as [`Sampled::unbalance`](crate::analysis::Sampled::unbalance)
-/// tests a column: not one period); too many harmonics `removed` for the samples (see
+/// the first (to [`PERIODIC_TOLERANCE`] of their largest magnitude: not one period; a quantity
+/// that is rounding alone, zero in exact arithmetic, may fail this: give its samples to
+/// [`Sampled::unbalance`](crate::analysis::Sampled::unbalance), which judges a column against
+/// the size of what it is computed from); too many harmonics `removed` for the samples (see
 /// [`fourier`]).
 ///
 /// ```
@@ -58,8 +66,22 @@ pub struct Unbalance {
 /// ```
 pub fn unbalance(
     samples: &[Jet],
+    eval: impl FnMut(f64) -> Result<Jet, Error>,
+    removed: usize,
+) -> Result<Unbalance, Error> {
+    let scale = samples.iter().fold(0.0f64, |m, s| m.max(s.value.abs()));
+    unbalance_at_scale(samples, eval, removed, scale)
+}
+
+/// [`unbalance`], the last sample's return to the first judged against `scale` (the
+/// quantity's natural size, at least its own largest magnitude: see
+/// [`SampledOf::unbalance`](crate::analysis::SampledOf::unbalance), which knows what a column
+/// is computed from).
+pub(crate) fn unbalance_at_scale(
+    samples: &[Jet],
     mut eval: impl FnMut(f64) -> Result<Jet, Error>,
     removed: usize,
+    scale: f64,
 ) -> Result<Unbalance, Error> {
     check_increasing(samples)?;
     let n = samples.len() - 1;
@@ -72,8 +94,7 @@ pub fn unbalance(
     }
     // Over part of a period (or more) the harmonics are of another quantity, which repeats the
     // samples of the range: the residual of half a turn of a cosine was 1.125, as `Ok`.
-    let scale = samples.iter().fold(0.0f64, |m, s| m.max(s.value.abs()));
-    if (samples[n].value - samples[0].value).abs() > 1e-9 * scale {
+    if (samples[n].value - samples[0].value).abs() > PERIODIC_TOLERANCE * scale {
         return Err(Error::InvalidArgument(format!(
             "residual needs samples over one period: the quantity is {} at the start and {} at the end",
             samples[0].value, samples[n].value

@@ -5,10 +5,11 @@
 
 use super::constraints::Constraints;
 use super::error::SynthesisError;
-use super::resolve::{Inputs, Resolved, column_kind, resolve_channel, resolve_timing, scalar_column, target_size};
+use super::resolve::{Inputs, Resolved, resolve_channel, resolve_timing, scalar_column, target_size};
 use super::task::{Channel, PlacementBounds, Task};
 use super::vars::{Bound, Design, check_bounds, param_index};
 use crate::analysis::ColumnIndex;
+use crate::analysis::column::column_kind;
 use crate::dims::Dims;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Sensitivities;

@@ -4,6 +4,7 @@
 use super::error::SynthesisError;
 use super::task::{Channel, Timing};
 use super::vars::check_bounds;
+use crate::analysis::column::column_kind;
 use crate::analysis::{ColumnIndex, ColumnOf};
 use crate::dims::Dims;
 use crate::kinds::QuantityKind;
@@ -56,15 +57,6 @@ pub(crate) fn resolve_channel<K: Kernel>(m: &K, c: &Channel) -> Result<Resolved,
             }
         }
     })
-}
-
-/// The kind of column `col` of `m`.
-pub(crate) fn column_kind<K: Kernel>(m: &K, col: ColumnIndex) -> QuantityKind {
-    match col {
-        ColumnIndex::Unknown(u) => m.unknown_kind(u),
-        ColumnIndex::Output(o) => m.output_kind(o),
-        ColumnIndex::Input(i) => m.input_kind(i),
-    }
 }
 
 /// An unknown or output column by name (the analysis's lookup; an input is no target column).

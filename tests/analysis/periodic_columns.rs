@@ -1,0 +1,74 @@
+//! `Sampled::fourier` and `Sampled::unbalance` of columns that stand still in exact arithmetic:
+//! a parallelogram four-bar's coupler angle (0 at every crank angle) and a centred slider's
+//! height (0). Computed, each is rounding alone, some 1e-16 of what it is solved from; judged
+//! against its own size, that noise at the start and end of a turn made a turn "not periodic".
+//! The references are exact: the coupler angle and the slider's height are zero, the coupler
+//! joint's height of the parallelogram `a sin(phi)`.
+
+use kinloop::analysis::Sampled;
+use kinloop::{AtSingular, SweepConfig};
+use kinloop_fixtures::FourBar;
+use std::f64::consts::TAU;
+
+kinloop::mechanism! {
+    /// The fixtures' slider-crank with the slider's pin as a point: `c = (x, e)`.
+    pub struct SliderPin {
+        params r, l, e;
+        input phi;
+        unknowns psi = 0, x = -l;
+        loop oabo: r @ phi == (x, e) + l @ psi;
+        point c = r @ phi - l @ psi;
+    }
+}
+
+/// Scales of length the checks run at: the library is scale-free.
+const SCALES: [f64; 3] = [1.0, 1e-3, 1e-6];
+
+/// The open parallelogram (crank and rocker `a`, coupler and frame `3 a`): the coupler stays
+/// parallel to the frame, `beta = 0`, and the rocker turns with the crank, `gamma = phi`. It
+/// has change points where all four links lie on the frame (`phi = 0, pi`), which the sweep
+/// passes on the parallelogram's branch.
+fn parallelogram_turn(m: &FourBar) -> Sampled<'_, FourBar, 2, 2> {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    Sampled::sweep_with(m, 0.3, 0.3 + TAU, 73, [0.0, 0.3], cfg).unwrap()
+}
+
+#[test]
+fn a_parallelogram_coupler_angle_that_stands_still_is_periodic() {
+    for s in SCALES {
+        let m = FourBar { a: s, b: 3.0 * s, c: s, d: 3.0 * s };
+        let turn = parallelogram_turn(&m);
+        // Its coefficients are the samples' rounding: every one of them zero within a solve's
+        // rounding of an angle (1e-12 rad).
+        let f = turn.fourier(FourBar::COL.beta, 4).unwrap_or_else(|e| panic!("scale {s}: {e}"));
+        assert!(f.a0.abs() < 1e-12, "scale {s}: {f:?}");
+        assert!(f.a.iter().chain(&f.b).all(|c| c.abs() < 1e-12), "scale {s}: {f:?}");
+        // Nothing is left after any harmonic but rounding; at the change points the positions
+        // are pinned less tightly (the corners there measured 1e-10 rad), so 1e-9 rad.
+        let u = turn.unbalance(FourBar::COL.beta, 1).unwrap_or_else(|e| panic!("scale {s}: {e}"));
+        assert!(u.max_abs < 1e-9, "scale {s}: {u:?}");
+        // The rocker turns a whole turn with the crank: not periodic, as before.
+        assert!(turn.fourier(FourBar::COL.gamma, 1).is_err(), "scale {s}");
+        // The joint's height `a sin(phi)`: one sine harmonic of amplitude `a` from 0.3 on.
+        let f = turn.fourier(FourBar::COL.pc.y, 3).unwrap();
+        let (a1, b1) = (s * 0.3f64.sin(), s * 0.3f64.cos());
+        assert!((f.a[0] - a1).abs() < 1e-12 * s && (f.b[0] - b1).abs() < 1e-12 * s, "scale {s}: {f:?}");
+    }
+}
+
+#[test]
+fn a_centred_slider_height_that_stands_still_is_periodic() {
+    for s in SCALES {
+        let m = SliderPin { r: s, l: 3.0 * s, e: 0.0 };
+        // From 0.1: the height rounds to a different tiny value at the start and the end.
+        let turn = Sampled::sweep(&m, 0.1, 0.1 + TAU, 73, [0.0, -3.9 * s]).unwrap();
+        let f = turn.fourier(SliderPin::COL.c.y, 3).unwrap_or_else(|e| panic!("scale {s}: {e}"));
+        // Rounding of lengths of about 4 s: 1e-12 of the mechanism's size.
+        assert!(f.a0.abs() < 1e-12 * s && f.a.iter().chain(&f.b).all(|c| c.abs() < 1e-12 * s), "scale {s}: {f:?}");
+        let u = turn.unbalance(SliderPin::COL.c.y, 1).unwrap_or_else(|e| panic!("scale {s}: {e}"));
+        assert!(u.max_abs < 1e-12 * s, "scale {s}: {u:?}");
+        // The slider's own position over half a turn is still not one period.
+        let half = Sampled::sweep(&m, 0.1, 0.1 + TAU / 2.0, 37, [0.0, -3.9 * s]).unwrap();
+        assert!(half.fourier(SliderPin::COL.x, 1).is_err(), "scale {s}");
+    }
+}
