@@ -22,3 +22,4 @@ mod periodic_columns;
 mod rests;
 mod sampled_paths;
 mod synthesis;
+mod unbalance_crossing;

@@ -515,10 +515,6 @@ impl<K: Kernel> SampledOf<K> {
         step.next_kin().unwrap_or_else(|| Err(Error::InvalidArgument("empty refinement sweep".into())))
     }
 
-    fn eval(&self, c: ColumnIndex) -> impl FnMut(f64) -> Result<Jet, Error> + '_ {
-        move |s| self.jet_of(c, s)
-    }
-
     /// Where a search for extremes looks at a column: the samples and, between two samples
     /// farther apart than a sweep's natural step ([`MAX_INPUT_STEP`] in the inputs' units, as
     /// the sweep's own metric measures it), equally spaced points at most that far apart,
@@ -896,6 +892,11 @@ impl<K: Kernel> SampledOf<K> {
         let c = c.resolve(&self.k)?;
         let jets = self.periodic(c)?;
         let scale = self.natural_scale(c, &jets);
-        unbalance::unbalance_at_scale(&jets, self.eval(c), removed, scale)
+        // The residual's extremes are looked for as `extremes` looks for a column's: across a
+        // singular crossing the sweep passed, at the crossing, not by a refinement stepping
+        // into its band (which failed the whole call with `NearSingular`).
+        self.searched(c, |search, corners, eval| {
+            unbalance::unbalance_across(&jets, search, corners, eval, removed, scale)
+        })
     }
 }

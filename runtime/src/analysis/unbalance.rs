@@ -12,7 +12,7 @@
 //! `D` is exact to rounding rather than to the sample spacing.
 
 use super::Jet;
-use super::extremes::{check_increasing, extremes};
+use super::extremes::{Corner, check_increasing, extremes_across};
 use super::fourier::{Fourier, fourier};
 use crate::error::Error;
 
@@ -79,6 +79,21 @@ pub fn unbalance(
 /// is computed from).
 pub(crate) fn unbalance_at_scale(
     samples: &[Jet],
+    eval: impl FnMut(f64) -> Result<Jet, Error>,
+    removed: usize,
+    scale: f64,
+) -> Result<Unbalance, Error> {
+    unbalance_across(samples, samples, &[], eval, removed, scale)
+}
+
+/// [`unbalance_at_scale`] with the residual's extremes looked for among the jets `search` (the
+/// samples and points between them, in increasing `x`) and across `corners` between them (the
+/// singular crossings of a sampled range, where nothing is evaluated nearby: see
+/// `extremes_across`); the harmonics are still those of the equally spaced `samples`.
+pub(crate) fn unbalance_across(
+    samples: &[Jet],
+    search: &[Jet],
+    corners: &[Corner],
     mut eval: impl FnMut(f64) -> Result<Jet, Error>,
     removed: usize,
     scale: f64,
@@ -106,10 +121,13 @@ pub(crate) fn unbalance_at_scale(
         let (v, d1, d2) = f.eval_upto(removed, j.x);
         Jet { x: j.x, value: j.value - v, d1: j.d1 - d1, d2: j.d2 - d2 }
     };
-    let r: Vec<Jet> = samples.iter().map(|&s| minus(s)).collect();
-    let found = extremes(&r, |x| eval(x).map(minus))?;
+    let r: Vec<Jet> = search.iter().map(|&s| minus(s)).collect();
+    let rc: Vec<Corner> = corners.iter().map(|c| Corner { after: c.after, at: minus(c.at) }).collect();
+    let found = extremes_across(&r, &rc, |x| eval(x).map(minus))?;
+    // The residual's largest magnitude: at an extreme, at a point of the search (an end of the
+    // period among them), or at a crossing, where its analog may jump without changing sign.
     let mut at = r[0];
-    for c in found.iter().map(|e| e.at).chain(r.iter().copied()) {
+    for c in found.iter().map(|e| e.at).chain(r.iter().copied()).chain(rc.iter().map(|c| c.at)) {
         if c.value.abs() > at.value.abs() {
             at = c;
         }
