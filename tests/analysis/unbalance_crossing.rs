@@ -1,4 +1,5 @@
-//! `Sampled::unbalance` across singular crossings (change points): the Grashof-equal four-bar
+//! `Sampled::unbalance` and `Sampled::fourier` across singular crossings (change points), with
+//! samples between the crossings and at them: the Grashof-equal four-bar
 //! of `limits_crossing` (`a + d = b + c`), whose links lie stretched along the frame at
 //! `phi = pi`, where the sweep passes from one assembly mode to the other, and back at
 //! `3 pi`: two crank turns are one period. The joint's `x` has its minimum at the crossing
@@ -20,6 +21,9 @@ const PERIOD: f64 = 2.0 * TAU;
 /// 74 intervals: the crossings at `pi` and `3 pi` lie between samples, not on them.
 const SAMPLES: usize = 75;
 
+/// 72 intervals (every 10 degrees): the crossings are samples, which the sweep cannot land on.
+const ON_CROSSINGS: usize = 73;
+
 /// The joint C of the four-bar (1, 2, 2.5, 3.5) times `s` at `phi`, in units of `s`: from the
 /// circles (B, b) and (D, c), on the left of B -> D before the first crossing and after the
 /// second, on its right between them (where the sweep's continuation through each change point
@@ -31,17 +35,33 @@ fn joint(s: f64, phi: f64) -> (f64, f64) {
     (cx / s, cy / s)
 }
 
+/// The trapezoidal sum of harmonic `k` of `v` over the period from `samples` equally spaced
+/// points (the last repeating the first): the mean for `k = 0`, the sine's coefficient where
+/// `sine`, the cosine's otherwise.
+fn harmonic(samples: usize, v: impl Fn(f64) -> f64, k: usize, sine: bool) -> f64 {
+    let n = samples - 1;
+    let weight = |x: f64| {
+        let t = k as f64 * TAU * x / PERIOD;
+        if k == 0 {
+            0.5
+        } else if sine {
+            t.sin()
+        } else {
+            t.cos()
+        }
+    };
+    let xs = (0..n).map(|j| PERIOD * j as f64 / n as f64);
+    2.0 * xs.map(|x| v(x) * weight(x)).sum::<f64>() / n as f64
+}
+
 /// The largest magnitude of the residual of `v` after its mean and first harmonic over the
 /// period, the harmonics from `v` at the samples' points (trapezoidal sums, as the library's
 /// definition has them), by brute force: a scan of 2^17 intervals (the crossings at `pi` and
 /// `3 pi` among its points), its best refined by golden sections over its two intervals.
-fn reference_residual(v: impl Fn(f64) -> f64) -> (f64, f64) {
-    let n = SAMPLES - 1;
+fn reference_residual(samples: usize, v: impl Fn(f64) -> f64) -> (f64, f64) {
     let theta = |x: f64| TAU * x / PERIOD;
-    let xs: Vec<f64> = (0..n).map(|j| PERIOD * j as f64 / n as f64).collect();
-    let a0 = xs.iter().map(|&x| v(x)).sum::<f64>() / n as f64;
-    let a1 = 2.0 * xs.iter().map(|&x| v(x) * theta(x).cos()).sum::<f64>() / n as f64;
-    let b1 = 2.0 * xs.iter().map(|&x| v(x) * theta(x).sin()).sum::<f64>() / n as f64;
+    let [a0, a1, b1] =
+        [harmonic(samples, &v, 0, false), harmonic(samples, &v, 1, false), harmonic(samples, &v, 1, true)];
     let r = |x: f64| (v(x) - a0 - a1 * theta(x).cos() - b1 * theta(x).sin()).abs();
     let m = 1 << 17;
     let h = PERIOD / m as f64;
@@ -69,7 +89,7 @@ fn the_residual_of_a_column_at_a_change_point_is_located_there() {
         for (name, v) in [("pc.x", 0), ("pc.y", 1)] {
             let col = |phi: f64| if v == 0 { joint(s, phi).0 } else { joint(s, phi).1 };
             let u = run.unbalance(name, 1).unwrap_or_else(|e| panic!("{name} at scale {s}: {e}"));
-            let (_, d) = reference_residual(col);
+            let (_, d) = reference_residual(SAMPLES, col);
             // The residual at the crossing is the joint's value at the located crossing: a
             // slope of order one times the crossing's location (`tol::LOCATED`), in units of s.
             assert_close!(u.max_abs / s, d, tol::LOCATED, "{name} at scale {s}: {u:?}");
@@ -77,6 +97,33 @@ fn the_residual_of_a_column_at_a_change_point_is_located_there() {
                 // At the crossing itself: C at (d - c, 0), the links along the frame.
                 assert_close!(u.at.x, PI, tol::LOCATED, "{name} at scale {s}: {u:?}");
             }
+        }
+    }
+}
+
+/// Samples at the crossings themselves: the sweep gives the first well-conditioned state past
+/// each (a thousandth of a radian on) in its place, which the Fourier sums weighed as if at
+/// `pi`: the joint's mean `x` came out 1.3e-8 off, and `unbalance` refused the samples as not
+/// equally spaced. The column at the crossing is now what the sums weigh.
+#[test]
+fn samples_at_the_change_points_are_summed_there() {
+    let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    for s in [1.0, 1e-3, 1e-6] {
+        let m = FourBar { a: s, b: 2.0 * s, c: 2.5 * s, d: 3.5 * s };
+        let run = Sampled::sweep_with(&m, 0.0, PERIOD, ON_CROSSINGS, [0.6, 1.7], cfg).unwrap();
+        for (name, v) in [("pc.x", 0), ("pc.y", 1)] {
+            let col = |phi: f64| if v == 0 { joint(s, phi).0 } else { joint(s, phi).1 };
+            let f = run.fourier(name, 3).unwrap_or_else(|e| panic!("{name} at scale {s}: {e}"));
+            // The samples are solved to rounding, the one at each crossing is the column at the
+            // located crossing (within rounding of pi and 3 pi here, measured 5e-15 off).
+            assert_close!(f.a0 / s, harmonic(ON_CROSSINGS, col, 0, false), tol::SOLVE, "{name} at scale {s}: {f:?}");
+            for k in 1..=3 {
+                assert_close!(f.a[k - 1] / s, harmonic(ON_CROSSINGS, col, k, false), tol::SOLVE, "{name} a{k} at {s}");
+                assert_close!(f.b[k - 1] / s, harmonic(ON_CROSSINGS, col, k, true), tol::SOLVE, "{name} b{k} at {s}");
+            }
+            let u = run.unbalance(name, 1).unwrap_or_else(|e| panic!("{name} at scale {s}: {e}"));
+            let (_, d) = reference_residual(ON_CROSSINGS, col);
+            assert_close!(u.max_abs / s, d, tol::SOLVE, "{name} at scale {s}: {u:?}");
         }
     }
 }
