@@ -6,7 +6,7 @@
 //! joint's height of the parallelogram `a sin(phi)`.
 
 use kinloop::analysis::Sampled;
-use kinloop::{AtSingular, SweepConfig};
+use kinloop::{AtSingular, Error, SweepConfig};
 use kinloop_fixtures::FourBar;
 use std::f64::consts::TAU;
 
@@ -70,5 +70,26 @@ fn a_centred_slider_height_that_stands_still_is_periodic() {
         // The slider's own position over half a turn is still not one period.
         let half = Sampled::sweep(&m, 0.1, 0.1 + TAU / 2.0, 37, [0.0, -3.9 * s]).unwrap();
         assert!(half.fourier(SliderPin::COL.x, 1).is_err(), "scale {s}");
+    }
+}
+
+/// The dwells of a column that stands still: it has no net travel, at every scale. Its
+/// rounding's travel was judged against its range, rounding too: the parallelogram's coupler
+/// angle passed as progressive, with no dwell at one scale and a search stepping into a change
+/// point's band (`NearSingular`) at another.
+#[test]
+fn a_column_that_stands_still_has_no_net_travel_for_dwells() {
+    for s in SCALES {
+        let m = FourBar { a: s, b: 3.0 * s, c: s, d: 3.0 * s };
+        let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+        let run = Sampled::sweep_with(&m, 0.3, 0.3 + 0.9 * TAU, 65, [0.0, 0.3], cfg).unwrap();
+        let r = run.dwells(FourBar::COL.beta);
+        assert!(matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("no net travel")), "scale {s}: {r:?}");
+        // The rocker, turning with the crank, is progressive: no reversal, no dwell.
+        assert_eq!(run.dwells(FourBar::COL.gamma).unwrap(), [], "scale {s}");
+        let m = SliderPin { r: s, l: 3.0 * s, e: 0.0 };
+        let run = Sampled::sweep(&m, 0.1, 0.1 + 0.9 * TAU, 65, [0.0, -3.9 * s]).unwrap();
+        let r = run.dwells(SliderPin::COL.c.y);
+        assert!(matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("no net travel")), "scale {s}: {r:?}");
     }
 }

@@ -75,17 +75,19 @@ pub const NO_TRAVEL: f64 = 1e-9;
 /// # Ok::<(), kinloop_runtime::Error>(())
 /// ```
 pub fn dwells(samples: &[Jet], eval: impl FnMut(f64) -> Result<Jet, Error>) -> Result<Vec<Dwell>, Error> {
-    dwells_across(samples, &[], eval)
+    dwells_across(samples, &[], eval, 0.0)
 }
 
 /// [`dwells`] with `corners` between samples, where the output cannot be evaluated nearby (the
 /// singular crossings of a sampled range): its extremes found as
 /// [`extremes_across`](super::extremes::extremes_across) finds them, an extreme at a crossing
-/// taken there.
+/// taken there. A net travel of at most `still` is none too, whatever the range (the rounding
+/// of an output that stands still, whose range is rounding as well).
 pub(crate) fn dwells_across(
     samples: &[Jet],
     corners: &[Corner],
     mut eval: impl FnMut(f64) -> Result<Jet, Error>,
+    still: f64,
 ) -> Result<Vec<Dwell>, Error> {
     check_increasing(samples)?;
     let (first, last) = (samples[0], samples[samples.len() - 1]);
@@ -96,7 +98,7 @@ pub(crate) fn dwells_across(
     // exactly 0 in metres, 4.4e-16 in inches, where a dwell of half a turn was reported).
     let (lo, hi) =
         samples.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), j| (lo.min(j.value), hi.max(j.value)));
-    if travel.abs() <= NO_TRAVEL * (hi - lo) {
+    if travel.abs() <= (NO_TRAVEL * (hi - lo)).max(still) {
         return Err(Error::InvalidArgument(format!(
             "dwells are defined for a progressive output: the output has no net travel over the range (it moves by \
              {travel:e} from start to end, over a range of {:e})",

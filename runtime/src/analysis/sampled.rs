@@ -743,9 +743,16 @@ impl<K: Kernel> SampledOf<K> {
 
     /// The dwells of a progressive column; see [`dwell`] for the definition. Between samples
     /// farther apart than a sweep's natural step, looked for as [`SampledOf::extremes`] looks.
+    /// A column with no net travel is an error: one that returns to its start within
+    /// [`NO_TRAVEL`](dwell::NO_TRAVEL) of its range, or within the rounding of what it is
+    /// computed from (as [`SampledOf::fourier`] judges it periodic).
     pub fn dwells(&self, c: impl ColumnOf<K>) -> Result<Vec<Dwell>, Error> {
         let c = c.resolve(&self.k)?;
-        self.searched(c, |jets, corners, eval| dwell::dwells_across(jets, corners, eval))
+        // A column that stands still in exact arithmetic moves by its rounding alone, whose
+        // travel against its range (rounding too) decided whether it was progressive: judged
+        // as its return to its start is (see `periodic`), it has no net travel.
+        let still = unbalance::PERIODIC_TOLERANCE * self.kind_scale(c);
+        self.searched(c, |jets, corners, eval| dwell::dwells_across(jets, corners, eval, still))
     }
 
     /// The rests of a column: where it stands exactly still (its velocity analog exactly zero
@@ -886,10 +893,17 @@ impl<K: Kernel> SampledOf<K> {
     ///   computed from.
     fn natural_scale(&self, c: ColumnIndex, jets: &[Jet]) -> f64 {
         let own = jets.iter().map(|j| j.value.abs()).fold(0.0, f64::max);
+        own.max(self.kind_scale(c))
+    }
+
+    /// The size of what a column of `c`'s kind is computed from (see
+    /// [`SampledOf::natural_scale`]): `pi` for an angle, the mechanism's largest length for a
+    /// length, 0 for anything else.
+    fn kind_scale(&self, c: ColumnIndex) -> f64 {
         match column_kind(&self.k, c) {
-            QuantityKind::Angle => own.max(std::f64::consts::PI),
-            QuantityKind::Length => own.max(self.length_scale()),
-            _ => own,
+            QuantityKind::Angle => std::f64::consts::PI,
+            QuantityKind::Length => self.length_scale(),
+            _ => 0.0,
         }
     }
 
