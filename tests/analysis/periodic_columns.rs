@@ -1,14 +1,15 @@
-//! `Sampled::fourier` and `Sampled::unbalance` of columns that stand still in exact arithmetic:
-//! a parallelogram four-bar's coupler angle (0 at every crank angle) and a centred slider's
-//! height (0). Computed, each is rounding alone, some 1e-16 of what it is solved from; judged
-//! against its own size, that noise at the start and end of a turn made a turn "not periodic".
+//! `Sampled::fourier`, `unbalance`, `dwells` and `extremes` of columns that stand still in
+//! exact arithmetic: a parallelogram four-bar's coupler angle (0 at every crank angle) and a
+//! centred slider's height (0). Computed, each is rounding alone, some 1e-16 of what it is solved from; judged
+//! against its own size, that noise at the start and end of a turn made a turn "not periodic"
+//! (and its travel progressive, the sign changes of its analog extremes).
 //! The references are exact: the coupler angle and the slider's height are zero, the coupler
 //! joint's height of the parallelogram `a sin(phi)`.
 
 use kinloop::analysis::Sampled;
 use kinloop::{AtSingular, Error, SweepConfig};
 use kinloop_fixtures::FourBar;
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 kinloop::mechanism! {
     /// The fixtures' slider-crank with the slider's pin as a point: `c = (x, e)`.
@@ -91,5 +92,32 @@ fn a_column_that_stands_still_has_no_net_travel_for_dwells() {
         let run = Sampled::sweep(&m, 0.1, 0.1 + 0.9 * TAU, 65, [0.0, -3.9 * s]).unwrap();
         let r = run.dwells(SliderPin::COL.c.y);
         assert!(matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("no net travel")), "scale {s}: {r:?}");
+    }
+}
+
+/// The extremes of a column that stands still: none, at every scale. The sign changes of its
+/// analog, rounding, were reported as some thirty maxima and minima a turn, at crank angles the
+/// rounding chose. Its range is its rounding; a column that moves keeps its extremes.
+#[test]
+fn a_column_that_stands_still_has_no_extremes() {
+    for s in SCALES {
+        let m = FourBar { a: s, b: 3.0 * s, c: s, d: 3.0 * s };
+        let turn = parallelogram_turn(&m);
+        assert_eq!(turn.extremes(FourBar::COL.beta).unwrap(), [], "scale {s}");
+        let r = turn.range(FourBar::COL.beta).unwrap();
+        assert!(r.extremes.is_empty(), "scale {s}: {r:?}");
+        // Rounding, and beside the change points the positions pinned to about 1e-10 rad.
+        assert!(r.min.value.abs() < 1e-9 && r.max.value.abs() < 1e-9, "scale {s}: {r:?}");
+        // The joint's height `a sin(phi)` keeps its two extremes, at pi/2 and 3 pi/2.
+        let e = turn.extremes(FourBar::COL.pc.y).unwrap();
+        assert_eq!(e.len(), 2, "scale {s}: {e:?}");
+        assert!((e[0].x() - PI / 2.0).abs() < 1e-9 && (e[1].x() - 1.5 * PI).abs() < 1e-9, "scale {s}: {e:?}");
+        let m = SliderPin { r: s, l: 3.0 * s, e: 0.0 };
+        let turn = Sampled::sweep(&m, 0.1, 0.1 + TAU, 73, [0.0, -3.9 * s]).unwrap();
+        assert_eq!(turn.extremes(SliderPin::COL.c.y).unwrap(), [], "scale {s}");
+        // The slider's dead centres at 180 degrees and a full turn: x = -(l + r) and -(l - r).
+        let e = turn.extremes(SliderPin::COL.x).unwrap();
+        assert_eq!(e.len(), 2, "scale {s}: {e:?}");
+        assert!((e[0].value() + 4.0 * s).abs() < 1e-12 * s && (e[1].value() + 2.0 * s).abs() < 1e-12 * s, "{e:?}");
     }
 }

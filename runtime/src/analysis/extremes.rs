@@ -302,6 +302,12 @@ pub(crate) fn global_range_across(
     eval: impl FnMut(f64) -> Result<Jet, Error>,
 ) -> Result<GlobalRange, Error> {
     let found = extremes_across(samples, corners, eval)?;
+    Ok(range_with(found, samples, corners))
+}
+
+/// The global range of a quantity with its interior extremes `found`: the smallest and largest
+/// of them, of the samples and of the values at the `corners`.
+pub(crate) fn range_with(found: Vec<LocalExtreme>, samples: &[Jet], corners: &[Corner]) -> GlobalRange {
     let first = samples[0];
     let candidates = found.iter().map(|e| e.at).chain(samples.iter().copied()).chain(corners.iter().map(|c| c.at));
     let mut min = first;
@@ -314,7 +320,7 @@ pub(crate) fn global_range_across(
             max = c;
         }
     }
-    Ok(GlobalRange { min, max, extremes: found })
+    GlobalRange { min, max, extremes: found }
 }
 
 pub(crate) fn check_increasing(samples: &[Jet]) -> Result<(), Error> {

@@ -690,10 +690,31 @@ impl<K: Kernel> SampledOf<K> {
     /// The local extremes of a column (interior roots of its derivative along the path), in
     /// increasing path parameter; see [`extremes()`](extremes::extremes). Between samples
     /// farther apart than a sweep's natural step, the sign changes are looked for at points
-    /// that close, solved on the sweep's branch: samples a turn apart do not hide them.
+    /// that close, solved on the sweep's branch: samples a turn apart do not hide them. A
+    /// column that stands still to the rounding of what it is computed from (a parallelogram's
+    /// coupler angle) has none: the sign changes of its analog are rounding.
     pub fn extremes(&self, c: impl ColumnOf<K>) -> Result<Vec<LocalExtreme>, Error> {
         let c = c.resolve(&self.k)?;
-        self.searched(c, |jets, corners, eval| extremes::extremes_across(jets, corners, eval))
+        self.searched(c, |jets, corners, eval| {
+            if self.stands_still(c, jets, corners) {
+                Ok(Vec::new())
+            } else {
+                extremes::extremes_across(jets, corners, eval)
+            }
+        })
+    }
+
+    /// Whether a column stands still over a search's points (`jets`, and the `corners` at the
+    /// crossings among them): all its values within the rounding of what it is computed from
+    /// ([`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of `pi` for an angle, of the
+    /// mechanism's largest length for a length; exactly equal otherwise). Its velocity analog is
+    /// then rounding too, and the sign changes of that noise are no extremes: a parallelogram's
+    /// coupler angle, zero at every crank angle, had thirty "extremes" a turn, at crank angles
+    /// the rounding chose.
+    fn stands_still(&self, c: ColumnIndex, jets: &[Jet], corners: &[extremes::Corner]) -> bool {
+        let values = jets.iter().chain(corners.iter().map(|k| &k.at)).map(|j| j.value);
+        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        hi - lo <= unbalance::PERIODIC_TOLERANCE * self.kind_scale(c)
     }
 
     /// Column `c` as a search between the samples sees it ([`SampledOf::extremes`]), handed to
@@ -738,7 +759,14 @@ impl<K: Kernel> SampledOf<K> {
     /// extremes are looked for as [`SampledOf::extremes`] looks for them.
     pub fn range(&self, c: impl ColumnOf<K>) -> Result<GlobalRange, Error> {
         let c = c.resolve(&self.k)?;
-        self.searched(c, |jets, corners, eval| extremes::global_range_across(jets, corners, eval))
+        self.searched(c, |jets, corners, eval| {
+            let found = if self.stands_still(c, jets, corners) {
+                Vec::new()
+            } else {
+                extremes::extremes_across(jets, corners, eval)?
+            };
+            Ok(extremes::range_with(found, jets, corners))
+        })
     }
 
     /// The dwells of a progressive column; see [`dwell`] for the definition. Between samples
