@@ -292,60 +292,142 @@ fn rust_white_space(c: char) -> bool {
     )
 }
 
-/// The first character outside comments that Unicode calls white space and Rust does not (a
-/// no-break space pasted from a web page, an em space): proc-macro2's lexer takes it for a
-/// space where the compiler refuses the same declaration in `mechanism!` ("unknown start of
-/// token"), and a `.kl` file is the same language as the macro's. Or the first control
+/// The first character outside comments and strings that Unicode calls white space and Rust
+/// does not (a no-break space pasted from a web page, an em space): proc-macro2's lexer takes it
+/// for a space where the compiler refuses the same declaration in `mechanism!` ("unknown start
+/// of token"), and a `.kl` file is the same language as the macro's. Or the first control
 /// character that is not Rust's white space (a NUL, a bell, an escape from a terminal): the
-/// lexer's own error names neither the character nor its place.
+/// lexer's own error names neither the character nor its place. Inside a comment or a string
+/// (the text of a `#[doc = "..."]`) both are text, as to the compiler; a `//` or `/*` inside a
+/// string starts no comment.
 fn foreign_character(text: &str) -> Option<Diagnostic> {
-    let mut chars = text.char_indices().peekable();
-    let (mut line, mut column) = (1, 1);
-    let advance = |c: char, line: &mut usize, column: &mut usize| {
-        if c == '\n' {
-            *line += 1;
-            *column = 1;
-        } else {
-            *column += 1;
-        }
-    };
+    let mut scan = Scan { chars: text.char_indices().peekable(), line: 1, column: 1, last: None, before: None };
     // Block comments nest in Rust; a line comment runs to the end of its line.
     let (mut depth, mut in_line_comment) = (0usize, false);
-    while let Some((at, c)) = chars.next() {
-        let next = chars.peek().map(|&(_, n)| n);
+    while let Some((at, c)) = scan.next() {
+        let next = scan.peek();
         if in_line_comment {
             in_line_comment = c != '\n';
         } else if c == '/' && next == Some('*') {
             depth += 1;
-            advance(c, &mut line, &mut column);
-            chars.next();
-            advance('*', &mut line, &mut column);
-            continue;
+            scan.next();
         } else if depth > 0 && c == '*' && next == Some('/') {
             depth -= 1;
-            advance(c, &mut line, &mut column);
-            chars.next();
-            advance('/', &mut line, &mut column);
-            continue;
-        } else if depth == 0 && c == '/' && next == Some('/') {
+            scan.next();
+        } else if depth > 0 {
+            // Text of a block comment.
+        } else if c == '/' && next == Some('/') {
             in_line_comment = true;
-        } else if depth == 0 && c.is_whitespace() && !rust_white_space(c) {
-            let message = format!(
-                "the character U+{:04X} is white space in Unicode but not in Rust: replace it with a plain space",
-                c as u32
-            );
-            return Some(Diagnostic { message, range: at..at + c.len_utf8(), line, column });
-        } else if depth == 0 && c.is_control() && !rust_white_space(c) {
-            let message = format!(
-                "unknown start of token: {}: the control character U+{:04X} has no place in a declaration; remove it",
-                c.escape_default(),
-                c as u32
-            );
+        } else if c == '"' {
+            scan.skip_string();
+        } else if let Some(hashes) = scan.raw_string_start(c) {
+            scan.skip_raw_string(hashes);
+        } else if let Some(message) = foreign_message(c) {
+            // The place of `c`: `scan` has moved one column past it.
+            let (line, column) = (scan.line, scan.column - 1);
             return Some(Diagnostic { message, range: at..at + c.len_utf8(), line, column });
         }
-        advance(c, &mut line, &mut column);
     }
     None
+}
+
+/// What the compiler says of the character `c` between tokens, when it refuses it.
+fn foreign_message(c: char) -> Option<String> {
+    if c.is_whitespace() && !rust_white_space(c) {
+        Some(format!(
+            "the character U+{:04X} is white space in Unicode but not in Rust: replace it with a plain space",
+            c as u32
+        ))
+    } else if c.is_control() && !rust_white_space(c) {
+        Some(format!(
+            "unknown start of token: {}: the control character U+{:04X} has no place in a declaration; remove it",
+            c.escape_default(),
+            c as u32
+        ))
+    } else {
+        None
+    }
+}
+
+/// The characters of a text with the line and column (in characters, from 1) of the next one.
+struct Scan<'a> {
+    chars: std::iter::Peekable<std::str::CharIndices<'a>>,
+    line: usize,
+    column: usize,
+    /// The character read last and the one before it.
+    last: Option<char>,
+    before: Option<char>,
+}
+
+impl Scan<'_> {
+    /// The next character and its byte offset; the line and column move past it.
+    fn next(&mut self) -> Option<(usize, char)> {
+        let (at, c) = self.chars.next()?;
+        if c == '\n' {
+            self.line += 1;
+            self.column = 1;
+        } else {
+            self.column += 1;
+        }
+        (self.before, self.last) = (self.last, Some(c));
+        Some((at, c))
+    }
+
+    fn peek(&mut self) -> Option<char> {
+        self.chars.peek().map(|&(_, c)| c)
+    }
+
+    /// Past the end of a string whose opening `"` was just read: a `\` escapes the character
+    /// after it. An unterminated string runs to the end of the text (the lexer names it).
+    fn skip_string(&mut self) {
+        while let Some((_, c)) = self.next() {
+            match c {
+                '\\' => {
+                    self.next();
+                }
+                '"' => return,
+                _ => {}
+            }
+        }
+    }
+
+    /// The number of `#` of a raw string (`r"..."`, `r#"..."#`, with a `b` or `c` before the
+    /// `r`) whose `r` is `c`, just read; past its opening `"`. `None` (nothing read) where `c`
+    /// starts no raw string: part of a name, or an `r` followed by no `"`.
+    fn raw_string_start(&mut self, c: char) -> Option<usize> {
+        if c != 'r' || !matches!(self.peek(), Some('"' | '#')) {
+            return None;
+        }
+        // A raw string starts a token: an `r` ending a name (`for"`) starts none. `before` is
+        // the character before the `r`, just read.
+        if self.before.is_some_and(|p| (p.is_alphanumeric() || p == '_') && !matches!(p, 'b' | 'c')) {
+            return None;
+        }
+        let mut lookahead = self.chars.clone();
+        let hashes = std::iter::from_fn(|| lookahead.next_if(|&(_, c)| c == '#')).count();
+        if lookahead.next().map(|(_, c)| c) != Some('"') {
+            return None;
+        }
+        for _ in 0..=hashes {
+            self.next();
+        }
+        Some(hashes)
+    }
+
+    /// Past the end of a raw string with `hashes` `#` whose opening `"` was just read.
+    fn skip_raw_string(&mut self, hashes: usize) {
+        while let Some((_, c)) = self.next() {
+            if c == '"' {
+                let mut lookahead = self.chars.clone();
+                if (0..hashes).all(|_| lookahead.next().is_some_and(|(_, c)| c == '#')) {
+                    for _ in 0..hashes {
+                        self.next();
+                    }
+                    return;
+                }
+            }
+        }
+    }
 }
 
 /// How many brackets open around a rejected closing one [`unclosed_before`] looks through for

@@ -294,3 +294,35 @@ fn a_name_written_with_a_combining_mark_is_its_precomposed_name() {
     let raw = text(composed, &format!("r#{decomposed}"));
     assert_eq!(Model::read("raw.kl", &raw).unwrap().params(), ["r", composed, "e"]);
 }
+
+/// A string (the text of a `#[doc = "..."]`, what a doc comment is written as) is text to the
+/// white-space check, as to the compiler: a no-break space in it is accepted, as `mechanism!`
+/// accepts it, and a `//` or `/*` in it starts no comment that would hide a no-break space
+/// after the string from the check (the compiler refuses that one).
+#[test]
+fn strings_are_text_to_the_white_space_check() {
+    let text = |doc: &str, after: &str| {
+        format!(
+            "pub struct S {{\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == a * phi;\n    \
+             #[doc = {doc}]\n    point p = (x, a);{after}\n}}\n"
+        )
+    };
+    let strings = ["\"crank\u{a0}pin\"", "\"a // b\"", "\"a /* b\"", "\"a \\\" /* b\"", "r#\"a \" /* b\"#"];
+    for doc in strings {
+        let accepted = text(doc, "");
+        // The macro's own front end over the same tokens: the reference.
+        let tokens: proc_macro2::TokenStream = accepted.parse().expect("tokens");
+        assert!(kinloop_codegen::analyze(tokens).is_ok(), "the macro refuses {doc}");
+        if let Err(e) = Model::read("doc.kl", &accepted) {
+            panic!("{doc}: {e}");
+        }
+    }
+    for doc in &strings[1..] {
+        let Err(ReadError::Rejected(d)) = Model::read("doc.kl", &text(doc, " \u{a0}")) else {
+            panic!("accepted: {doc}")
+        };
+        let got: Vec<(&str, usize, usize)> = d.items.iter().map(|i| (i.message.as_str(), i.line, i.column)).collect();
+        let message = "the character U+00A0 is white space in Unicode but not in Rust: replace it with a plain space";
+        assert_eq!(got, [(message, 7, 23)], "{doc}");
+    }
+}
