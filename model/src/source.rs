@@ -241,7 +241,7 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
     let lexed = text.parse::<TokenStream>().map_err(|e| {
         let mut d = at_span(text, e.span(), String::new());
         d.message = lex_message(&text[d.range.start..], &e);
-        if let Some(open) = unclosed_before(text, &d) {
+        if let Some(open) = unclosed_before(text, &d).or_else(|| mismatched_before(text, &d)) {
             d = open;
         }
         Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items: vec![d] }
@@ -468,6 +468,45 @@ fn unclosed_before(text: &str, d: &Diagnostic) -> Option<Diagnostic> {
         }
     }
     None
+}
+
+/// Where a closing bracket the lexer rejects (`d`, at the `]` of `(x, 0]`) closes no bracket
+/// of its kind ([`unclosed_before`] found none): the innermost bracket still open before it,
+/// of another kind, which the compiler reports as closed by a "mismatched closing delimiter"
+/// (the `(`), with the fixes. `None` where `d` is no closing bracket, or no bracket but the
+/// declaration's `{` is open before it (`)` alone: unexpected, reported where it is).
+fn mismatched_before(text: &str, d: &Diagnostic) -> Option<Diagnostic> {
+    let close = text[d.range.start..].chars().next().filter(|c| matches!(c, ')' | ']' | '}'))?;
+    let before = &text[..d.range.start];
+    let e = before.parse::<TokenStream>().err()?;
+    let mut open = at_span(before, e.span(), String::new());
+    // The declaration's own `{` (every bracket before it closed): the closing bracket is
+    // unexpected inside the block, as the compiler says of one in a function's body.
+    before[..open.range.start].parse::<TokenStream>().err()?;
+    let c = before[open.range.start..].chars().next()?;
+    let closing = closing_of(c)?;
+    // The other fix, an opening bracket of the closing one's kind: not `[`, which opens nothing
+    // in a declaration's expressions (its vectors are written in parentheses).
+    let other = match opening_of(close)? {
+        '[' => String::new(),
+        opening => format!(", or open it with `{opening}`"),
+    };
+    open.message = format!(
+        "mismatched closing delimiter: this `{c}` is closed by the `{close}` at line {}, column {}: close it with \
+         `{closing}`{other}",
+        d.line, d.column
+    );
+    Some(open)
+}
+
+/// The opening bracket of the closing one `c`.
+fn opening_of(c: char) -> Option<char> {
+    match c {
+        ')' => Some('('),
+        ']' => Some('['),
+        '}' => Some('{'),
+        _ => None,
+    }
 }
 
 /// The closing bracket of the opening one `c`.

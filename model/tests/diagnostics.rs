@@ -326,3 +326,55 @@ fn strings_are_text_to_the_white_space_check() {
         assert_eq!(got, [(message, 7, 23)], "{doc}");
     }
 }
+
+/// A closing bracket of another kind than the one it closes (`(d, 0]`): the opening bracket is
+/// named with the closing one and the fix (as the compiler's "mismatched closing delimiter", at
+/// the opening bracket), not "unexpected closing delimiter" at the `]` alone. A `[` opens no
+/// vector: it is not offered.
+#[test]
+fn a_mismatched_closing_bracket_names_the_one_it_closes() {
+    let text = |vector: &str| {
+        format!(
+            "pub struct S {{\n    params a = 1, d = 3;\n    input phi;\n    unknowns psi = 0, x = 2;\n    \
+             loop l: a @ phi == {vector} + 2 @ psi;\n}}\n"
+        )
+    };
+    let cases = [
+        (
+            "(x, d]",
+            "mismatched closing delimiter: this `(` is closed by the `]` at line 5, column 29: close it with `)`",
+            5,
+            24,
+        ),
+        (
+            "[x, d)",
+            "mismatched closing delimiter: this `[` is closed by the `)` at line 5, column 29: close it with `]`, or open it with `(`",
+            5,
+            24,
+        ),
+        (
+            "((x, d)]",
+            "mismatched closing delimiter: this `(` is closed by the `]` at line 5, column 31: close it with `)`",
+            5,
+            24,
+        ),
+    ];
+    for (vector, message, line, column) in cases {
+        let Err(ReadError::Rejected(d)) = Model::read("bracket.kl", &text(vector)) else {
+            panic!("accepted: {vector}")
+        };
+        let got: Vec<(&str, usize, usize)> = d.items.iter().map(|i| (i.message.as_str(), i.line, i.column)).collect();
+        assert_eq!(got, [(message, line, column)], "{vector}");
+    }
+    // A closing bracket inside the declaration's block alone, or after it, is still unexpected,
+    // where it is (the compiler's words for one in a function's body).
+    let inside = text("(x, d)").replace("\n}", "\n    ]\n}");
+    let after = format!("{})", text("(x, d)"));
+    for (stray, message, line, column) in
+        [(inside, "unexpected closing delimiter: `]`", 6, 5), (after, "unexpected closing delimiter: `)`", 7, 1)]
+    {
+        let Err(ReadError::Rejected(d)) = Model::read("bracket.kl", &stray) else { panic!("accepted: {stray}") };
+        let got: Vec<(&str, usize, usize)> = d.items.iter().map(|i| (i.message.as_str(), i.line, i.column)).collect();
+        assert_eq!(got, [(message, line, column)], "{stray}");
+    }
+}
