@@ -203,7 +203,11 @@ impl DefaultDrawing {
         })
     }
 
-    /// Renames joint `from` to `to`.
+    /// Renames joint `from` to `to`: the name by which [`DefaultDrawing::joint`],
+    /// [`DefaultDrawing::hide`] and [`DefaultDrawing::joint_names`] know it. The drawing does not
+    /// write it: the label drawn at a declared `point` is the point's name, as the motion's
+    /// columns name it (an unnamed joint has none); to write another, label the point, as in
+    /// `.extend(|d| d.label(Pt::point("p"), "P"))`.
     ///
     /// # Errors
     /// [`DrawError::UnknownPoint`] when no joint is named `from`.
