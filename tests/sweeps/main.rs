@@ -11,6 +11,7 @@
 mod support;
 
 mod assur_groups;
+mod change_point_samples;
 mod events_extreme_scales;
 mod sweep_any_step;
 mod sweep_api;

@@ -825,8 +825,15 @@ where
 
     /// After a crossing: follows the curve from `p` until the Jacobian is well conditioned again
     /// (so the analogs can be trusted) without passing the sample at `target`; sets `tau` there.
-    /// `p`'s tangent is in the scaled coordinates of `metric`.
-    fn resume_past(&mut self, mut p: CurvePoint<Q<K>>, target: f64, metric: &Metric<Q<K>>) -> Option<KinOf<K>> {
+    /// `p`'s tangent is in the scaled coordinates of `metric`; `far` are the assembly modes past
+    /// the crossing, those of the branch followed on.
+    fn resume_past(
+        &mut self,
+        mut p: CurvePoint<Q<K>>,
+        target: f64,
+        far: DetSigns,
+        metric: &Metric<Q<K>>,
+    ) -> Option<KinOf<K>> {
         let path = self.path.clone();
         let newton = self.cfg.newton;
         let end = target * path.len;
@@ -840,7 +847,7 @@ where
             // sweep gave the state of the point past as the sample's (a refinement 1e-5 past a
             // four-bar's change point returned the state 7e-4 past it, as if at 1e-5).
             if landing && p.sigma >= end {
-                if let Some(k) = self.land_on(&p, target, metric) {
+                if let Some(k) = self.land_on(&p, target, far, metric) {
                     return Some(k);
                 }
                 landing = false;
@@ -858,7 +865,7 @@ where
             }
             let next = curve::arc_step(&self.m, &path, metric, &p, ds, &newton)?;
             if landing && next.sigma >= end {
-                if let Some(k) = self.land_on(&p, target, metric) {
+                if let Some(k) = self.land_on(&p, target, far, metric) {
                     return Some(k);
                 }
                 landing = false;
@@ -871,10 +878,23 @@ where
     }
 
     /// The state at the sample `target`, solved from the point `p` of the curve beside it (its
-    /// prediction along the curve's tangent the guess); sets `tau` there.
-    fn land_on(&mut self, p: &CurvePoint<Q<K>>, target: f64, metric: &Metric<Q<K>>) -> Option<KinOf<K>> {
+    /// prediction along the curve's tangent the guess); sets `tau` there. `None` where that state
+    /// is not one a step could accept past the crossing: its pivot ratio below
+    /// [`SweepConfig::singular_pivot`] (within the crossing's band, where the residual tolerance
+    /// no longer pins the branch and the two branches lie closer than the prediction's error), or
+    /// its assembly modes not `far`, the far side's (the other branch, or a sample before the
+    /// crossing). Landed on there, the sweep gave a state on either branch, and its next step
+    /// failed: a Grashof-equal four-bar sampled 2e-8 to 2e-7 rad past its change point stopped
+    /// with `NearSingular`, and one sampled 1e-7 before it recorded the crossing twice.
+    fn land_on(&mut self, p: &CurvePoint<Q<K>>, target: f64, far: DetSigns, metric: &Metric<Q<K>>) -> Option<KinOf<K>> {
         let guess = p.predicted(target * self.path.len, metric);
         let k = self.m.kinematics(&self.path.at_tau(target), &guess, &self.cfg.newton).ok()?;
+        let health = k.health();
+        // (A NaN pivot ratio is not pinned.)
+        let pinned = health.min_pivot >= self.cfg.singular_pivot;
+        if !pinned || !health.det_signs.same_for(&far, self.m.block_count()) {
+            return None;
+        }
         self.tau = target;
         Some(k)
     }
@@ -988,8 +1008,12 @@ where
                     let flipped =
                         beyond.and_then(|n| n.health().det_signs.first_difference(&self.signs)).unwrap_or(weakest);
                     self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
+                    // The assembly modes past the crossing: the near side's with the flipped block's
+                    // turned over.
+                    let mut far = self.signs;
+                    far.set_negative(flipped);
                     if self.cfg.at_singular == AtSingular::Continue
-                        && let Some(n) = self.resume_past(past, target, &metric)
+                        && let Some(n) = self.resume_past(past, target, far, &metric)
                     {
                         return Ok(n);
                     }
