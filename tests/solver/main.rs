@@ -13,6 +13,7 @@ mod support;
 
 mod accepted_guess;
 mod closed_form;
+mod closed_form_constructions;
 mod closed_form_prop;
 mod decomposition;
 mod deferred_checks;
