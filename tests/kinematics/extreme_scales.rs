@@ -399,6 +399,52 @@ fn a_length_input_solves_at_every_scale() {
     assert!(worst[0] <= SCALE_TOL && worst[1] <= SCALE_TOL, "{worst:?}");
 }
 
+/// The cylinder's jets by hand from `c e(th) = d + s e(ph)`: C on the circles (O, c) and
+/// (D, s), D = (d, 0), on side `side` of O -> D (+1 above); differentiating by `s` and taking
+/// the components along and across `e(ph)` (`w = th - ph`): `th' = -1 / (c sin w)`, `ph' = c th'
+/// cos(w) / s`, `th'' = (s ph'^2 - c th'^2 cos w) / (c sin w)`, `ph'' = (c th'' cos w - c th'^2
+/// sin w - 2 ph') / s`. `[th, ph]`, each `[position, first, second]`.
+fn cylinder_by_hand(c: f64, d: f64, s: f64, side: f64) -> [[f64; 3]; 2] {
+    let (cx, cy) = crate::support::circle_point(0.0, 0.0, c, d, 0.0, s, side);
+    let (th, ph) = (cy.atan2(cx), cy.atan2(cx - d));
+    let (sw, cw) = (th - ph).sin_cos();
+    let th1 = -1.0 / (c * sw);
+    let ph1 = c * th1 * cw / s;
+    let th2 = (s * ph1 * ph1 - c * th1 * th1 * cw) / (c * sw);
+    let ph2 = (c * th2 * cw - c * th1 * th1 * sw - 2.0 * ph1) / s;
+    [[th, th1, th2], [ph, ph1, ph2]]
+}
+
+/// The reference the scale test above measures every scale against: the cylinder at scale 1,
+/// closed form and Newton, against the triangle O-C-D and its analogs by the input length
+/// differentiated by hand, in the assembly mode each solve reaches, over the strokes that
+/// assemble (`1 < s < 3`; the ends are folds, where `sin w` vanishes, so 1.1 to 2.9). Positions
+/// to `tol::SOLVE`, and the analogs relative: a handful of operations on the positions with
+/// `|sin w| >= 0.35` here, they inherit the positions' error (measured: up to 4e-14, Newton's,
+/// whose positions stop within its residual tolerance).
+#[test]
+fn a_length_input_matches_its_triangle() {
+    let cfg = NewtonConfig::default();
+    let (c, d) = (1.0, 2.0);
+    for i in 0..=36 {
+        let s = 1.1 + 1.8 * i as f64 / 36.0;
+        let closed = Cylinder { c, d }.kinematics_flat(&[s], &[1.5, 2.0], &cfg);
+        let newton = CylinderNewton { c, d }.kinematics_flat(&[s], &[1.5, 2.0], &cfg);
+        for (path, k) in [("closed form", closed), ("Newton", newton)] {
+            let k = k.unwrap_or_else(|e| panic!("{path} at s = {s}: {e}"));
+            // The mode the solve reached: C above or below the line of the pivots.
+            let side = if k.q[0].sin() >= 0.0 { 1.0 } else { -1.0 };
+            let want = cylinder_by_hand(c, d, s, side);
+            for u in 0..2 {
+                let [q, dq, d2q] = want[u];
+                assert!(wrap(k.q[u] - q).abs() <= tol::SOLVE, "{path} at s = {s}: q[{u}] {} against {q}", k.q[u]);
+                assert_close!(k.dq[u][0], dq, rel = tol::SOLVE, "{path} at s = {s}: dq[{u}]");
+                assert_close!(k.d2q[u][0][0], d2q, rel = tol::SOLVE, "{path} at s = {s}: d2q[{u}]");
+            }
+        }
+    }
+}
+
 /// Links of very different lengths in one dyad: a parallelogram four-bar of crank and rocker 1
 /// on a coupler and frame of `k` (`a = c = 1`, `b = d = k`), whose rocker on its parallelogram
 /// branch turns with the crank, `gamma = phi` exactly, and whose coupler stays parallel to the
