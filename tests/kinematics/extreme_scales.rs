@@ -14,7 +14,7 @@ use kinloop::{Kin, Mechanism, NewtonConfig, Sens, Sensitivities, Sweep};
 
 use kinloop_fixtures::{FourBarSens, RhombicDrive, RhombicDriveDense};
 
-use crate::support::{gear_lever_explicit, tol, wrap};
+use crate::support::{four_bar_jets, gear_lever_explicit, tol, wrap};
 
 with_newton_twin! {
     /// Four-bar (RRR dyad) with a coupler point.
@@ -324,6 +324,48 @@ fn a_chain_of_ten_unknowns_solves_at_every_scale() {
     assert!(closed <= SCALE_TOL && newton <= SCALE_TOL, "{closed:e} {newton:e}");
     let swept = sweeps(chain, [false; 10]);
     assert!(swept <= SCALE_TOL, "chain sweeps differ by {swept:e}");
+}
+
+/// The reference the scale test above measures every scale against: the chain at scale 1,
+/// closed form and Newton, stage by stage against a four-bar by hand (`support::four_bar_jets`) driven by the rocker of
+/// the stage before (its analogs by the crank by the chain rule: `q' = q_x x'`, `q'' = q_xx
+/// x'^2 + q_x x''`), each stage in the assembly mode the solve reached. Positions to
+/// `tol::SOLVE`, and the analogs to `tol::SOLVE` relative: Newton's positions may stop that far
+/// from the root, and the analogs inherit their error (measured: within 3e-15 for both).
+#[test]
+fn a_chain_of_ten_unknowns_matches_four_bars_in_series() {
+    let cfg = NewtonConfig::default();
+    let m = chain(1.0);
+    let newton = chain_newton(1.0);
+    for i in 0..12 {
+        let phi = 0.3 + i as f64 * 0.5;
+        let closed = m.kinematics_flat(&[phi], &m.guess_flat(&[phi]), &cfg);
+        let twin = newton.kinematics_flat(&[phi], &newton.guess_flat(&[phi]), &cfg);
+        for (path, k) in [("closed form", closed), ("Newton", twin)] {
+            let k = k.unwrap_or_else(|e| panic!("{path} at {phi}: {e}"));
+            // The stage's input: its position and analogs by the chain's crank.
+            let mut input = [phi, 1.0, 0.0];
+            for stage in 0..5 {
+                let solved = [2 * stage, 2 * stage + 1];
+                let by_hand = |side: f64| four_bar_jets(m.a, m.b, m.c, m.d, input[0], side).expect("a crank-rocker");
+                let apart = |side: f64| {
+                    let want = by_hand(side);
+                    solved.iter().zip(&want).map(|(&u, w)| wrap(k.q[u] - w[0]).abs()).fold(0.0, f64::max)
+                };
+                let side = if apart(1.0) <= apart(-1.0) { 1.0 } else { -1.0 };
+                // Each angle's jets by the crank; the rocker's drive the next stage.
+                let want =
+                    by_hand(side).map(|[q, qx, qxx]| [q, qx * input[1], qxx * input[1] * input[1] + qx * input[2]]);
+                for (&u, [q, dq, d2q]) in solved.iter().zip(want) {
+                    let at = format!("{path} at {phi}: {}", FourBarChain::UNKNOWNS[u]);
+                    assert!(wrap(k.q[u] - q).abs() <= tol::SOLVE, "{at}: {} against {q}", k.q[u]);
+                    assert_close!(k.dq[u][0], dq, rel = tol::SOLVE, "{at}'");
+                    assert_close!(k.d2q[u][0][0], d2q, rel = tol::SOLVE, "{at}''");
+                }
+                input = want[1];
+            }
+        }
+    }
 }
 
 /// The rhombic drive solved as one dense Newton block (`RhombicDriveDense`): its rods' angles

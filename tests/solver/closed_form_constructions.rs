@@ -7,7 +7,7 @@
 //! analogs within `ANALOGS`, relative.
 
 use crate::closed_form::{EllipticRocker, HalfUnitRocker, OffsetDyad, SlottedRocker, TiltedSlider};
-use crate::support::{angle_apart, circle_point, tol};
+use crate::support::{angle_apart, four_bar_jets, tol};
 use kinloop::{Mechanism, NewtonConfig};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -108,28 +108,16 @@ fn a_tilted_slider_crank_matches_its_projections() {
 }
 
 /// `a @ phi + b @ (u + alpha) == (d, 0) + c * (sin(v + delta), cos(v + delta))`: a four-bar with
-/// coupler angle `beta = u + alpha` and rocker angle `gamma = pi / 2 - (v + delta)`. C from the
-/// circles (B, b) and (D, c) on either side of B -> D. Differentiated by hand from `a e(phi) + b
-/// e(beta) = d + c e(gamma)`: `beta' = a sin(gamma - phi) / (b sin(beta - gamma))`, `gamma' = a
-/// sin(beta - phi) / (c sin(beta - gamma))`, and, with `R = a e(phi) + b beta'^2 e(beta) - c
-/// gamma'^2 e(gamma)`, `beta'' = -Re(R e(-gamma)) / (b sin(beta - gamma))`, `gamma'' = Re(R
-/// e(-beta)) / (c sin(gamma - beta))`; `u` moves as `beta`, `v` as `-gamma`.
+/// coupler angle `beta = u + alpha` and rocker angle `gamma = pi / 2 - (v + delta)`, C from the
+/// circles (B, b) and (D, c) on either side of B -> D, differentiated by hand
+/// (`support::four_bar_jets`); `u` moves as `beta`, `v` as `-gamma`.
 #[test]
 fn an_offset_and_reflected_dyad_matches_the_circle_construction() {
     let m = OffsetDyad::default();
-    let (a, b, c) = (m.a, m.b, m.c);
     let jets = |phi: f64, mode: usize| {
-        let (bx, by) = (a * phi.cos(), a * phi.sin());
         let side = if mode == 0 { 1.0 } else { -1.0 };
-        let (cx, cy) = circle_point(bx, by, b, m.d, 0.0, c, side);
-        let (beta, gamma) = ((cy - by).atan2(cx - bx), cy.atan2(cx - m.d));
-        let s = (beta - gamma).sin();
-        let beta1 = a * (gamma - phi).sin() / (b * s);
-        let gamma1 = a * (beta - phi).sin() / (c * s);
-        let along_gamma = a * (phi - gamma).cos() + b * beta1 * beta1 * (beta - gamma).cos() - c * gamma1 * gamma1;
-        let along_beta = a * (phi - beta).cos() + b * beta1 * beta1 - c * gamma1 * gamma1 * (gamma - beta).cos();
-        let beta2 = -along_gamma / (b * s);
-        let gamma2 = along_beta / (c * -s);
+        let [[beta, beta1, beta2], [gamma, gamma1, gamma2]] =
+            four_bar_jets(m.a, m.b, m.c, m.d, phi, side).expect("a crank-rocker assembles");
         [[beta - m.alpha, beta1, beta2], [FRAC_PI_2 - m.delta - gamma, -gamma1, -gamma2]]
     };
     check(&m, jets, [true, true]);

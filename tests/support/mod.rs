@@ -231,6 +231,23 @@ pub fn four_bar_joint(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> Op
     Some(circle_point(bx, by, b, d, 0.0, c, side))
 }
 
+/// The four-bar's coupler and rocker angles `[beta, gamma]` at crank angle `x` (as
+/// [`four_bar_angles`]), each `[position, first, second]` by `x`, differentiated by hand from
+/// `a e(x) + b e(beta) = d + c e(gamma)`: `beta' = a sin(gamma - x) / (b sin(beta - gamma))`,
+/// `gamma' = a sin(beta - x) / (c sin(beta - gamma))`, and with
+/// `R = a e(x) + b beta'^2 e(beta) - c gamma'^2 e(gamma)`,
+/// `beta'' = -Re(R e(-gamma)) / (b sin(beta - gamma))`,
+/// `gamma'' = Re(R e(-beta)) / (c sin(gamma - beta))`. `None` where it cannot be assembled.
+pub fn four_bar_jets(a: f64, b: f64, c: f64, d: f64, x: f64, side: f64) -> Option<[[f64; 3]; 2]> {
+    let [beta, gamma] = four_bar_angles(a, b, c, d, x, side)?;
+    let s = (beta - gamma).sin();
+    let beta1 = a * (gamma - x).sin() / (b * s);
+    let gamma1 = a * (beta - x).sin() / (c * s);
+    let along_gamma = a * (x - gamma).cos() + b * beta1 * beta1 * (beta - gamma).cos() - c * gamma1 * gamma1;
+    let along_beta = a * (x - beta).cos() + b * beta1 * beta1 - c * gamma1 * gamma1 * (gamma - beta).cos();
+    Some([[beta, beta1, -along_gamma / (b * s)], [gamma, gamma1, along_beta / (c * -s)]])
+}
+
 /// The four-bar's coupler and rocker angles (of B -> C and D -> C) at `phi`, from
 /// [`four_bar_joint`]; `None` where it cannot be assembled.
 pub fn four_bar_angles(a: f64, b: f64, c: f64, d: f64, phi: f64, side: f64) -> Option<[f64; 2]> {
