@@ -8,7 +8,7 @@
 //!
 //! The harmonics come from [`fourier`] over the cycle's samples; the
 //! maximum of `|v - v_m|` is located among the extremes of the residual `r = v - v_m`, found as
-//! roots of `r' = v' - v_m'` with `r'' = v'' - v_m''` (see [`extremes`]), so
+//! roots of `r' = v' - v_m'` with `r'' = v'' - v_m''` (see [`extremes`](super::extremes::extremes)), so
 //! `D` is exact to rounding rather than to the sample spacing.
 
 use super::Jet;
