@@ -187,7 +187,7 @@ fn bounds(spec: &str, what: &str) -> Result<(f64, f64), Failed> {
     // be meant.
     if hi.trim_start().starts_with('.') {
         return Err(exit::usage(format!(
-            "{not_bounds}: it has three dots or more between the bounds; write two (`0..5`, or `0..0.5` for a bound              of .5)"
+            "{not_bounds}: it has three dots or more between the bounds; write two (`0..5`, or `0..0.5` for a bound of .5)"
         )));
     }
     match (number(lo), number(hi)) {

@@ -9,7 +9,9 @@ use crate::sweep::{range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
-use kinloop_runtime::{Error, Event, Location, Number, QuantityKind, Table, TraceConfig, TracedOf, TracedPointOf};
+use kinloop_runtime::{
+    Error, Event, Kernel, Number, QuantityKind, SweepConfig, Table, TraceConfig, TracedOf, TracedPointOf,
+};
 use std::path::Path;
 
 /// What `kinloop trace` was asked.
@@ -158,11 +160,14 @@ fn write_points(
 
 /// The failure of the output `k` of `model`, not finite at the inputs `x` (of kinds `kinds`) of
 /// a traced point: the error a solve there reports ([`Error::Domain`] of the output, at the
-/// inputs, in degrees with `deg`), exit code 1.
-fn output_not_finite(model: &Model, x: &[f64], k: usize, kinds: &[QuantityKind], deg: bool) -> Failed {
-    let inputs = model.inputs().iter().map(|n| std::borrow::Cow::Owned(n.clone())).zip(x.iter().copied()).collect();
-    let at = Location { mechanism: std::borrow::Cow::Owned(model.name().to_string()), inputs, block: None };
-    let name = std::borrow::Cow::Owned(model.outputs()[k].clone());
-    let e = Error::Domain { what: "output", name, at: Box::new(at) };
-    solve_failed(model.name(), e, kinds, deg)
+/// model's location of the inputs, in degrees with `deg`), exit code 1.
+fn output_not_finite(model: &mut Model, x: &[f64], k: usize, kinds: &[QuantityKind], deg: bool) -> Failed {
+    let (mechanism, name) = (model.name().to_string(), std::borrow::Cow::Owned(model.outputs()[k].clone()));
+    // The location is the model's as a kernel (the one its solves report), whatever the
+    // configuration: the trace already ran, so every parameter has a value.
+    let e = match model.kernel(SweepConfig::default()) {
+        Ok(kernel) => Error::Domain { what: "output", name, at: kernel.location(x, None) },
+        Err(e) => e,
+    };
+    solve_failed(&mechanism, e, kinds, deg)
 }
