@@ -28,7 +28,7 @@ pub struct Request<'a> {
 /// Sweeps from the declared guess at `from` and writes the table to standard output, each
 /// state's row as soon as it is solved. A sweep that stops (a limit position, no assembly) has
 /// written the states before the stop; it writes the events and the reason on standard error,
-/// and fails.
+/// and fails. One whose start cannot be solved writes no table, not even its header.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     samples::check(req.samples)?;
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
@@ -74,11 +74,14 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let units = Units { factors, degrees, last: req.samples.saturating_sub(1).max(1) as f64 };
     // The first sample, before anything is created: a range longer than a sweep follows is
     // refused there, a usage error.
+    // A start that cannot be solved (no assembly, a singular position) fails there too, as
+    // `trace`, `extremes` and `solve` fail: no state was solved, so no table is written (it
+    // wrote the header alone, a table of no rows, before the error).
     let first = match sweep.next_ref() {
         Some(Ok(k)) => Some(Ok(k.table_row())),
         Some(Err(e)) => match range_too_long(&name, &e, req.from, req.to, req.deg) {
             Some(usage) => return Err(usage),
-            None => Some(Err(e)),
+            None => return Err(solve_failed(&name, e, &kinds[..ni], req.deg)),
         },
         None => None,
     };

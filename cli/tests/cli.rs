@@ -1212,3 +1212,25 @@ fn a_zero_is_written_without_a_sign() {
     let values: Vec<&str> = written.lines().nth(1).expect("a row").split(',').collect();
     assert_eq!(values[1], "0", "mean_torque: {written}");
 }
+
+/// A sweep whose start cannot be solved (the frame longer than the other three links together:
+/// no assembly at any angle) writes no table, as `trace` and `extremes` write none: it wrote
+/// the header of a table of no rows, then failed. The reason is on standard error, and no
+/// `--events` file is left behind.
+#[test]
+fn a_sweep_that_cannot_start_writes_no_table() {
+    let four_bar = shipped("four_bar.kl");
+    let events = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("no-start-events.csv");
+    std::fs::remove_file(&events).ok();
+    let events = events.display().to_string();
+    let unreachable = ["--params", "a=1,b=3,c=2.5,d=10", "--from", "0", "--to", "90", "--deg"];
+    for extra in [&["sweep", "--samples", "3", "--events", &events][..], &["trace", "--events", &events], &["extremes"]]
+    {
+        let out = kinloop(&[&extra[..1], &[four_bar.as_str()], &unreachable, &extra[1..]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{extra:?}: {err}");
+        assert!(err.contains("cannot be assembled") && err.contains("at phi = 0 "), "{extra:?}: {err}");
+        assert_eq!(String::from_utf8_lossy(&out.stdout), "", "{extra:?}: a table of no rows");
+        assert!(!std::path::Path::new(&events).exists(), "{extra:?}: an events file was left");
+    }
+}
