@@ -3,7 +3,7 @@
 //! written to `--events`).
 
 use crate::csv_rows::CsvRows;
-use crate::solve::{factors, model_inputs, parse_inputs, solve_failed, units};
+use crate::solve::{degrees, factors, model_inputs, parse_inputs, solve_failed, units};
 use crate::{Failed, exit, output, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
@@ -257,9 +257,13 @@ pub(crate) fn write_events(
     file: Option<std::fs::File>,
 ) -> std::io::Result<()> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
-    // Written as the table writes its numbers (a zero without a sign).
+    // Written as the table writes its numbers (a zero without a sign), an angle in degrees as
+    // the trace's rows and the error that stops a sweep at the event write it: the shortest
+    // decimal that reads back to its radians (`v.to_degrees()` may end a unit in the last
+    // place off, and wrote the same limit position as 81.90928802268786 here and
+    // 81.90928802268785 in the error).
     let angle = |k: QuantityKind, v: f64| {
-        Number(crate::csv_rows::unsigned_zero(if deg && k == QuantityKind::Angle { v.to_degrees() } else { v }))
+        Number(crate::csv_rows::unsigned_zero(if deg && k == QuantityKind::Angle { degrees(v) } else { v }))
     };
     let ni = model.inputs().len();
     let Some(file) = file else {

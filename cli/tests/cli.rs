@@ -1234,3 +1234,39 @@ fn a_sweep_that_cannot_start_writes_no_table() {
         assert!(!std::path::Path::new(&events).exists(), "{extra:?}: an events file was left");
     }
 }
+
+/// An event's angles in degrees are written as the error that stops the sweep there writes
+/// them, and as `solve` and `trace` write angles: the shortest decimal that reads back to the
+/// radians. The limit position of the four-bar `a=2.7, b=2, c=2.5, d=4` (crank and frame
+/// closing the triangle of side `b + c`: `cos phi = (a^2 + d^2 - (b + c)^2) / (2 a d)`,
+/// `phi = 81.909288022687850198 deg` to 20 digits) was listed as `81.90928802268786` (its
+/// radians times `180/pi`, a unit in the last place up) and stopped the sweep "at phi =
+/// 81.90928802268785": one position, two numbers.
+#[test]
+fn an_event_is_written_in_degrees_as_the_error_at_it_is() {
+    let four_bar = shipped("four_bar.kl");
+    let file = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("limit-events.csv");
+    let file_arg = file.display().to_string();
+    let args = ["sweep", &four_bar, "--params", "a=2.7,b=2,c=2.5,d=4", "--from", "0", "--to", "180", "--deg"];
+    let number_after = |text: &str, key: &str| -> String {
+        let at = text.find(key).unwrap_or_else(|| panic!("`{key}` in {text}")) + key.len();
+        text[at..].chars().take_while(|c| c.is_ascii_digit() || *c == '.').collect()
+    };
+    let out = kinloop(&args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let listed = number_after(&err, "event: limit position at phi = ");
+    let stopped = number_after(&err, "stopped at a limit position in `FourBar` at phi = ");
+    assert_eq!(listed, stopped, "{err}");
+    let out = kinloop(&[&args[..], &["--events", &file_arg]].concat());
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    let events = std::fs::read_to_string(&file).expect("the events file");
+    let row = events.lines().nth(1).expect("one event");
+    let written = row.split(',').nth(2).expect("phi");
+    assert_eq!(written, listed, "{events}");
+    // The position itself, to well within the sweep's location of a limit position (to the
+    // rounding of the input, about 1e-14 deg here; 1e-9 deg leaves room for another path to it).
+    let phi: f64 = listed.parse().expect("a number");
+    assert!((phi - 81.909_288_022_687_85).abs() <= 1e-9, "{phi}");
+    std::fs::remove_file(&file).ok();
+}
