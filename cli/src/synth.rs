@@ -342,6 +342,9 @@ struct Units {
     angle: f64,
     /// That unit.
     angle_unit: &'static str,
+    /// A turn in the unit of the errors where they are an angle's (a function of an angle
+    /// output), whose errors the library takes modulo a turn; `None` otherwise.
+    turn: Option<f64>,
 }
 
 impl Units {
@@ -357,7 +360,8 @@ impl Units {
         let kind = kind.unwrap_or(QuantityKind::Other);
         let error_unit = if kind == QuantityKind::Angle { angle_unit } else { kind.unit() };
         let input = model.input_kinds().first().map_or(1.0, |&k| of(k));
-        Units { error: of(kind), error_unit, input, angle, angle_unit }
+        let turn = (kind == QuantityKind::Angle).then_some(TAU * angle);
+        Units { error: of(kind), error_unit, input, angle, angle_unit, turn }
     }
 }
 
@@ -438,24 +442,10 @@ fn table(report: &SynthesisReport, u: &Units) -> String {
 fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path: bool) -> Option<String> {
     let best = report.best()?;
     let width = rows.first()?.len();
-    let columns: Vec<usize> = if path { vec![width - 2, width - 1] } else { vec![width - 1] };
-    let n = rows.len() as f64;
-    let centre: Vec<f64> = columns
-        .iter()
-        .map(|&c| match path {
-            // Each term divided first: sums of targets near the largest f64 stay finite.
-            true => rows.iter().map(|r| r[c] / n).sum::<f64>(),
-            false => {
-                let (lo, hi) =
-                    rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), r| (l.min(r[c]), h.max(r[c])));
-                0.5 * lo + 0.5 * hi
-            }
-        })
-        .collect();
-    let reach = rows
-        .iter()
-        .map(|r| columns.iter().zip(&centre).fold(0.0f64, |d, (&c, m)| d.hypot(r[c] - m)))
-        .fold(0.0f64, f64::max);
+    let reach = match path {
+        true => path_reach(rows.iter().map(|r| [r[width - 2], r[width - 1]])),
+        false => value_reach(rows.iter().map(|r| r[width - 1]), units.turn),
+    };
     let error = best.max_error * units.error;
     (reach > 0.0 && error >= reach).then(|| {
         format!(
@@ -466,6 +456,34 @@ fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path
             Number(reach)
         )
     })
+}
+
+/// How far the points `points` lie from their mean at most.
+fn path_reach(points: impl Iterator<Item = [f64; 2]> + Clone) -> f64 {
+    let n = points.clone().count() as f64;
+    // Each term divided first: sums of targets near the largest f64 stay finite.
+    let centre = points.clone().fold([0.0, 0.0], |[x, y], [px, py]| [x + px / n, y + py / n]);
+    points.map(|[x, y]| (x - centre[0]).hypot(y - centre[1])).fold(0.0f64, f64::max)
+}
+
+/// How far the values `values` lie from their middle at most: half their spread; for an angle
+/// (`turn`: a turn in their unit), whose errors the library takes modulo a turn, half the
+/// shortest arc of the circle that holds them all (179 and -179 degrees are 2 degrees apart,
+/// 1 from their middle at 180, not 179 from 0). The value nearest all of them sits opposite the
+/// middle of the widest gap between them: every value is then at most half a turn less half
+/// that gap away, and elsewhere the value at one end of the gap is farther.
+fn value_reach(values: impl Iterator<Item = f64> + Clone, turn: Option<f64>) -> f64 {
+    let Some(turn) = turn else {
+        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+        // Halves first: the spread of values near the largest f64 stays finite.
+        let centre = 0.5 * lo + 0.5 * hi;
+        return (hi - centre).max(centre - lo);
+    };
+    let mut on_turn: Vec<f64> = values.map(|v| v.rem_euclid(turn)).collect();
+    on_turn.sort_by(f64::total_cmp);
+    let (Some(&first), Some(&last)) = (on_turn.first(), on_turn.last()) else { return 0.0 };
+    let widest = on_turn.windows(2).map(|w| w[1] - w[0]).fold(turn - (last - first), f64::max);
+    0.5 * (turn - widest)
 }
 
 /// What happened to the starts, in one line.
@@ -485,4 +503,36 @@ fn summary(r: &SynthesisReport) -> String {
         r.rejected.miss,
         Count(r.evaluations, "evaluation")
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::value_reach;
+
+    /// The reach of angles against the brute force: the best of a thousandth of a degree's
+    /// grid of constants, each's largest error modulo a turn (a grid point lies within 0.0005
+    /// of the best constant, so the two agree to that).
+    #[test]
+    fn the_reach_of_angles_is_the_best_constant_s_largest_error() {
+        let wrapped = |d: f64| (d - 360.0 * (d / 360.0).round()).abs();
+        for values in [
+            &[179.0, -179.0][..],
+            &[0.0, 180.0],
+            &[0.0, 120.0, 240.0],
+            &[10.0, 20.0, -350.0, 730.0],
+            &[-90.0, 90.0, 100.0],
+            &[42.0],
+        ] {
+            let brute = (0..360_000)
+                .map(|k| {
+                    let c = k as f64 / 1000.0;
+                    values.iter().map(|v| wrapped(v - c)).fold(0.0, f64::max)
+                })
+                .fold(f64::INFINITY, f64::min);
+            let reach = value_reach(values.iter().copied(), Some(360.0));
+            assert!((reach - brute).abs() <= 5e-4 + 1e-12, "{values:?}: {reach} against {brute}");
+        }
+        // Not an angle: half the spread.
+        assert_eq!(value_reach([179.0, -179.0].into_iter(), None), 179.0);
+    }
 }

@@ -459,6 +459,33 @@ fn targets_out_of_reach_get_a_note() {
     assert!(err.contains("as much as they lie from their centre (10)"), "{err}");
 }
 
+/// Angle targets on both sides of the half turn (179, -179.5, 179.5 and -179 degrees of the
+/// rocker) lie within a degree of 180, as the library measures an angle's error (modulo a
+/// turn): no design of the bounds turns the rocker near there (the best misses by about 61
+/// degrees), and the note says so. Their middle was taken as 0, each 179 degrees from it, and
+/// the note, needing a miss of 179, was not given. Radians alike: 3, 3.1 and -3.1 lie on an
+/// arc from 3 to `2 pi - 3.1`, `pi - 3.05` from its middle.
+#[test]
+fn angle_targets_across_the_half_turn_lie_within_their_arc() {
+    let four_bar = shipped("coupler_four_bar.kl");
+    let vary = "a=0.8..1.4,b=2..3.5";
+    for (name, rows, deg, reach) in [
+        ("synth_half_turn_deg.csv", "0,179\n45,-179.5\n90,179.5\n135,-179\n", true, 1.0),
+        ("synth_half_turn_rad.csv", "0,3.1\n0.8,-3.1\n1.6,3.0\n", false, std::f64::consts::PI - 3.05),
+    ] {
+        let targets = file(name, rows);
+        let args = ["synth", &four_bar, "--targets", &targets, "--function", "phi:gamma", "--vary", vary];
+        let deg = if deg { &["--deg"][..] } else { &[] };
+        let out = kinloop(&[&args[..], deg, &["--starts", "8"]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{err}");
+        let said = err.split("as much as they lie from their centre (").nth(1).and_then(|t| t.split(')').next());
+        let said: f64 = said.and_then(|t| t.parse().ok()).unwrap_or_else(|| panic!("{name}: no note: {err}"));
+        // The targets' rounding in the turn's unit (a few units in the last place of 2 pi).
+        assert!((said - reach).abs() <= 1e-14, "{name}: {said} against {reach}");
+    }
+}
+
 /// The search is free of the unit of length: eight points at prescribed crank angles of a
 /// four-bar whose every length is scaled by `s`, its crank and coupler varied over bounds
 /// scaled alike, give the same design relative to `s` from 1e-300 to 1e300. With lengths near
