@@ -173,8 +173,9 @@ fn config(req: &Request) -> RunConfig {
     cfg.with_ode(ode).with_flywheel(req.flywheel)
 }
 
-/// A failed simulation: a start so far out that no step can move it, a `--time` that needs
-/// more steps than `--max-steps`, or a body's mass or inertia made negative by the parameters,
+/// A failed simulation: a start so far out that no step can move it, a `--time` too short for
+/// a step or that needs more steps than `--max-steps`, or a body's mass or inertia made
+/// negative by the parameters,
 /// is a bad argument (a usage error); the rest is the model's (a limit position or a singular
 /// motion reached, a load that is not finite).
 fn failure(name: &str, e: Error, deg: bool) -> Failed {
@@ -184,6 +185,12 @@ fn failure(name: &str, e: Error, deg: bool) -> Failed {
     };
     match dynamics {
         Some(&DynamicsError::TooManySteps { steps, t, t_end }) => return usage(budget_spent(name, steps, t, t_end)),
+        // A `--time` too short for any step (below about 4e-323, a few subnormals: the time's
+        // rounding there is as large as the span): the argument's error, named by its option.
+        // It failed as a solve, exit code 1, saying "invalid end time".
+        Some(&DynamicsError::BadValue { what: "end time", value, why }) => {
+            return usage(format!("{name}: --time {}: {why}", Number(value)));
+        }
         // A body's mass or inertia comes from the parameters given (the declaration's own
         // numbers are checked when it is read): a bad argument, as a parameter that is not
         // finite is.

@@ -204,3 +204,27 @@ fn a_start_no_step_can_move_is_named_as_given() {
     }
     assert_eq!(run("2.5e8", true).0, Some(0));
 }
+
+/// A `--time` too short for any step (a few subnormals: below 8 units in the last place of the
+/// smallest normal double, about 3.9e-323, the time's rounding is as large as the span) is a
+/// usage error naming `--time`, as `--time 0` is: it failed as a solve (exit 1) with the
+/// library's "invalid end time". A tiny time that a step spans (1e-300) is simulated: the
+/// crank has turned by the speed times the time (its acceleration adds `t^2`, 1e-600: nothing).
+#[test]
+fn a_time_too_short_for_a_step_is_a_usage_error() {
+    let engine = shipped("engine.kl");
+    let run = |time: &str| kinloop(&["simulate", &engine, "--speed", "150", "--time", time, "--samples", "2"]);
+    for time in ["5e-324", "2e-323", "3.5e-323"] {
+        let out = run(time);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "--time {time}: {err}");
+        assert!(err.contains("--time") && err.contains("EngineMachine"), "--time {time}: {err}");
+        assert!(out.stdout.is_empty(), "--time {time}");
+    }
+    let (_, rows) = csv(&run("1e-300"));
+    let [t, phi, omega] = rows[1][..] else { panic!("three columns: {rows:?}") };
+    assert_eq!(t, 1e-300);
+    // To a few roundings of the integrator's sums (1e-15 relative).
+    assert!((phi / 1.5e-298 - 1.0).abs() <= 1e-15, "{phi}");
+    assert!((omega / 150.0 - 1.0).abs() <= 1e-15, "{omega}");
+}
