@@ -146,7 +146,25 @@ fn cycle_and_flywheel(
 ) -> Result<(Cycle, Flywheel), Failed> {
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let (speed, start) = (req.speed / angle, req.start / angle);
-    let cycle = model.inverse_cycle(SpeedLaw::Constant(speed)).start(start).samples(req.samples).about(about).run();
+    let mut run = |about: [f64; 2]| {
+        model.inverse_cycle(SpeedLaw::Constant(speed)).start(start).samples(req.samples).about(about).run()
+    };
+    let cycle = run(about);
+    // A shaking moment beyond the range of f64 about a point `--about` puts so far out that
+    // its lever arm overflows (1e305 away for the shipped engine), where the moments about the
+    // origin are within it: the argument's error, said of `--about`. It failed as a solve
+    // (exit code 1), advising other units for the model.
+    if let Err(e) = &cycle
+        && about != [0.0, 0.0]
+        && shaking_overflows(e)
+        && run([0.0, 0.0]).is_ok()
+    {
+        return Err(usage(format!(
+            "{name}: --about {}: the shaking moment about that point is beyond the range of f64 (its distance from \
+             the mechanism times the shaking force): take the moments about a point nearer the mechanism",
+            req.about.unwrap_or_default()
+        )));
+    }
     // The runtime refuses a start angle too large for the samples of a turn to be told apart
     // (or more samples than memory holds), and a body's mass or inertia that the parameters
     // make negative or not finite: bad arguments, usage errors. What remains is the model's (a
@@ -191,6 +209,15 @@ fn cycle_and_flywheel(
         Failed(exit::SOLVE_FAILED)
     })?;
     Ok((cycle, flywheel))
+}
+
+/// Whether `e` is the runtime's shaking force or moment beyond the range of f64.
+fn shaking_overflows(e: &Error) -> bool {
+    let dynamics = match e {
+        Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
+        _ => None,
+    };
+    matches!(dynamics, Some(DynamicsError::Overflow { what: "shaking force or moment", .. }))
 }
 
 /// The cycle as a table: per angle the input, its speed and acceleration, the reduced inertia

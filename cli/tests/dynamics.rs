@@ -347,3 +347,30 @@ fn a_note_where_the_energy_method_neglects_what_matters() {
         }
     }
 }
+
+/// A moment centre `--about` so far out that the shaking moment about it is beyond the range
+/// of f64 (the engine's shaking force is about 3.7e3, so 1e305 away the moment is 4e308) is the
+/// argument's error, named: it failed as a solve (exit code 1) advising other units for the
+/// model. 1e300 away it is within range and the moment transfers as statics says, `M_A = M_O -
+/// (A x F)`: `-x_A F_y` for a centre on the x axis, against the moments about the origin.
+#[test]
+fn a_moment_centre_too_far_out_is_a_usage_error() {
+    let engine = shipped("engine.kl");
+    let run = |about: &str| kinloop(&["dynamics", &engine, "--speed", "150", "--samples", "8", "--about", about]);
+    for about in ["1e305,0", "1e308,1e308"] {
+        let out = run(about);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "--about {about}: {err}");
+        assert!(err.contains(&format!("--about {about}")) && err.contains("nearer"), "{err}");
+        assert!(out.stdout.is_empty(), "--about {about}");
+    }
+    let (header, origin) = csv(&run("0,0"));
+    let (_, far) = csv(&run("1e300,0"));
+    let col = |name: &str| header.iter().position(|h| h.starts_with(name)).expect(name);
+    let (fy, m) = (col("shaking_y"), col("shaking_moment"));
+    for (o, f) in origin.iter().zip(&far) {
+        let want = o[m] - 1e300 * o[fy];
+        // The rounding of the products (the origin's moment is lost against 1e300 F_y).
+        assert!((f[m] - want).abs() <= 4.0 * f64::EPSILON * want.abs(), "{} against {want}", f[m]);
+    }
+}
