@@ -3,6 +3,7 @@
 //! written to `--events`).
 
 use crate::csv_rows::CsvRows;
+use crate::numbers::between;
 use crate::solve::{degrees, factors, model_inputs, parse_inputs, solve_failed, units};
 use crate::{Failed, exit, output, progress, samples};
 use kinloop_model::Model;
@@ -71,7 +72,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
         e => solve_failed(&name, e, &kinds[..ni], req.deg),
     })?;
-    let units = Units { factors, degrees, last: req.samples.saturating_sub(1).max(1) as f64 };
+    let units = Units { factors, degrees, last: req.samples.saturating_sub(1).max(1) };
     // The first sample, before anything is created: a range longer than a sweep follows is
     // refused there, a usage error.
     // A start that cannot be solved (no assembly, a singular position) fails there too, as
@@ -147,7 +148,7 @@ struct Units {
     /// Per input, its ends in degrees as given, where it is an angle written in degrees.
     degrees: Vec<Option<(f64, f64)>>,
     /// The index of the last sample (1 for a sweep of one sample).
-    last: f64,
+    last: usize,
 }
 
 impl Units {
@@ -157,21 +158,25 @@ impl Units {
         // An angle input in degrees: the sample's value between the ends given, not its
         // radians times `180/π` (`59.99999999999999` for the sample at 60), as `solve` writes
         // the input given. Exact where the samples fall on round numbers.
-        let (s, last) = (s as f64, self.last);
         for (i, ends) in self.degrees.iter().enumerate() {
             let Some((a, b)) = ends else { continue };
-            let given = (a * (last - s) + b * s) / last;
-            // Only where the state is at the sample to the rounding: a sample at a singular
-            // crossing passed (`--through-crossings`) is the first well-conditioned state past
-            // it, whose own input is written.
-            let rounding = 1e-9 * ((b - a) / last).abs() + 8.0 * f64::EPSILON * given.abs();
-            // Ends near the largest `f64`: the products overflow, the product stays.
-            if given.is_finite() && (given - row[i]).abs() <= rounding {
-                row[i] = given;
-            }
+            row[i] = sample_as_given(*a, *b, s, self.last, row[i]);
         }
         row
     }
+}
+
+/// The value written for sample `s` of the equally spaced samples from `a` (sample 0) to `b`
+/// (sample `last`), given in degrees, whose state is at `written` (its radians times `180/π`):
+/// the sample's value between the ends given ([`between`]: `60`, where the product is
+/// `59.99999999999999`; the ends themselves). Only where the state is at the sample to the
+/// rounding: a sample at a singular crossing passed (`--through-crossings`) is the first
+/// well-conditioned state past it, whose own input is written.
+pub(crate) fn sample_as_given(a: f64, b: f64, s: usize, last: usize, written: f64) -> f64 {
+    let given = between(a, b, s, last);
+    let rounding = 1e-9 * ((b - a) / last as f64).abs() + 8.0 * f64::EPSILON * given.abs();
+    // Ends near the largest `f64`: the products overflow, the product stays.
+    if given.is_finite() && (given - written).abs() <= rounding { given } else { written }
 }
 
 /// Writes the row of each state `next` solves (in `units`) to `rows` as soon as it is solved,
@@ -343,7 +348,7 @@ mod tests {
     fn sweep_into(samples: usize, capacity: usize) -> (Recorder, usize, io::Result<bool>) {
         let mut model = Model::read("four_bar.kl", FOUR_BAR).expect("the declaration reads");
         let columns = model.columns();
-        let units = Units { factors: vec![1.0; columns.len()], degrees: vec![None], last: (samples - 1) as f64 };
+        let units = Units { factors: vec![1.0; columns.len()], degrees: vec![None], last: samples - 1 };
         let mut sweep = model.sweep(&[0.0], &[1.0], samples, &[0.6, 1.9]).expect("a sweep");
         let solved = Rc::new(Cell::new(0));
         let mut sink = Recorder { solved: solved.clone(), bytes: Vec::new(), writes: Vec::new(), capacity };

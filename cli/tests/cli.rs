@@ -1270,3 +1270,24 @@ fn an_event_is_written_in_degrees_as_the_error_at_it_is() {
     assert!((phi - 81.909_288_022_687_85).abs() <= 1e-9, "{phi}");
     std::fs::remove_file(&file).ok();
 }
+
+/// A sweep's inputs in degrees are the decimals between the ends as given, the ends
+/// themselves among them: `--from 0.7` was written `0.6999999999999998`, `--to 360.1`
+/// `360.1000000000001`, the sample at 30.1 `30.100000000000005` (the doubles' interpolation,
+/// rounded four times). Each is the double of the decimal it stands for (written with one
+/// decimal, read back: an independent parse).
+#[test]
+fn a_sweep_writes_the_decimals_between_its_ends() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    for (from, to, samples, step) in [("0.7", "1.3", 7, 0.1), ("0.1", "360.1", 13, 30.0), ("-33.3", "77.7", 112, 1.0)] {
+        let args = ["sweep", &four_bar, "--params", params, "--from", from, "--to", to, "--deg"];
+        let (_, rows) = csv(&kinloop(&[&args[..], &["--samples", &samples.to_string()]].concat()));
+        let start: f64 = from.parse().expect("a number");
+        for (k, row) in rows.iter().enumerate() {
+            let want: f64 = format!("{:.1}", start + step * k as f64).parse().expect("a number");
+            assert_eq!(row[0], want, "{from}..{to}, sample {k}");
+        }
+        assert_eq!(rows.len(), samples);
+    }
+}
