@@ -8,6 +8,7 @@
 
 use crate::cam_drawn::FaceLine;
 use crate::exit::usage;
+use crate::numbers::between;
 use crate::output::OutFile;
 use crate::solve::{point, solve_failed};
 use crate::{Failed, exit, samples};
@@ -253,10 +254,14 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
         });
     }
     // Each sample's input in the units given, between the ends as given (`86`, not
-    // `86.00000000000001` from the radians), as `kinloop sweep` writes its samples.
-    let last = (req.samples - 1) as f64;
-    let full = if req.deg { 360.0 } else { std::f64::consts::TAU };
-    let inputs: Vec<f64> = (0..req.samples).map(|k| req.start + full * k as f64 / last).collect();
+    // `86.00000000000001` from the radians), as `kinloop sweep` writes its samples: in degrees
+    // the decimals of the ends' ([`between`]: `21.7`, not `21.700000000000003`, the sample
+    // `--start 0.1` and 101 samples put there).
+    let last = req.samples - 1;
+    let inputs: Vec<f64> = match req.deg {
+        true => (0..req.samples).map(|k| between(req.start, req.start + 360.0, k, last)).collect(),
+        false => (0..req.samples).map(|k| req.start + std::f64::consts::TAU * k as f64 / last as f64).collect(),
+    };
     let points: Vec<[f64; 2]> = follower_samples.iter().map(|s| s.point[0]).collect();
     let sample = |k: usize| format!("sample {k} (input {}{})", Number(inputs[k]), if req.deg { " deg" } else { "" });
     let point_name = format!("the follower's point `{}`", req.point);

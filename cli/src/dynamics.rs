@@ -9,6 +9,7 @@
 
 use crate::exit::usage;
 use crate::solve::{in_units, named, point};
+use crate::sweep::sample_as_given;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dynamics::{Cycle, DynamicsError, Flywheel, MIN_DELTA, SpeedLaw};
@@ -127,7 +128,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let input = model.inputs()[0].clone();
-    let table = cycle_table(&cycle, &input, req.deg);
+    let table = cycle_table(&cycle, &input, req.deg.then_some(req.start));
     if let Err(e) = crate::output::table(&table, "the table") {
         if let Some(file) = file {
             file.abandon();
@@ -223,14 +224,27 @@ fn shaking_overflows(e: &Error) -> bool {
 /// The cycle as a table: per angle the input, its speed and acceleration, the reduced inertia
 /// `J`, its slope, the load `Q` (the generalised force of the loads and gravity on the input),
 /// the driving torque and the shaking force and moment, with units.
-fn cycle_table(cycle: &Cycle, input: &str, deg: bool) -> Table {
+///
+/// `start_deg`: the start angle in degrees as given, where angles are written in degrees
+/// (radians otherwise).
+fn cycle_table(cycle: &Cycle, input: &str, start_deg: Option<f64>) -> Table {
+    let deg = start_deg.is_some();
     let (angle, a) = if deg { (180.0 / std::f64::consts::PI, "deg") } else { (1.0, "rad") };
     let slope = format!("d(J)/d({input})");
     let columns = [input, "omega", "eps", "J", &slope, "load", "torque", "shaking_x", "shaking_y", "shaking_moment"];
     let mut t = Table::new(columns.iter().map(|c| c.to_string()).collect());
-    for p in &cycle.points {
+    // The angles in degrees of the turn's equally spaced samples, from the start as given (the
+    // turn's end, a sample past the last one, not written): as `sweep` writes its samples,
+    // `5`, not their radians times `180/π`, `5.000000000000001` (a quarter of the default
+    // turn's 360 angles were written so).
+    let last = cycle.points.len();
+    let input_at = |k: usize, phi: f64| match start_deg {
+        Some(start) => sample_as_given(start, start + 360.0, k, last, phi * angle),
+        None => phi,
+    };
+    for (k, p) in cycle.points.iter().enumerate() {
         t.push(vec![
-            p.phi * angle,
+            input_at(k, p.phi),
             p.omega * angle,
             p.eps * angle,
             p.inertia,

@@ -417,3 +417,19 @@ fn a_plot_named_for_another_format_is_refused() {
     let (out, created) = cam("plot.SVG");
     assert!(out.status.success() && created, "{}", stderr(&out));
 }
+
+/// The cam's inputs in degrees are the decimals from `--start` as given, as a sweep writes its
+/// samples: from `--start 0.1` over 101 samples, 3.6 degrees apart, 21.7 was written
+/// `21.700000000000003` and 28.9 `28.900000000000002` (the start plus the turn's share, rounded
+/// twice). Each is the double of the decimal it stands for (written with one decimal, read back).
+#[test]
+fn the_cam_s_inputs_in_degrees_are_the_decimals_from_the_start() {
+    let cam = shipped("dwell_cam.kl");
+    let args = ["cam", &cam, "--point", "follower", "--guide", "0,1", "--roller", "10", "--deg"];
+    let (_, rows) = csv(&kinloop(&[&args[..], &["--start", "0.1", "--samples", "101"]].concat()));
+    assert_eq!(rows.len(), 101);
+    for (k, row) in rows.iter().enumerate() {
+        let want: f64 = format!("{:.1}", 0.1 + 3.6 * k as f64).parse().expect("a number");
+        assert_eq!(row[0], want, "sample {k}");
+    }
+}

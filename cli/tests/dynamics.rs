@@ -374,3 +374,24 @@ fn a_moment_centre_too_far_out_is_a_usage_error() {
         assert!((f[m] - want).abs() <= 4.0 * f64::EPSILON * want.abs(), "{} against {want}", f[m]);
     }
 }
+
+/// The turn's angles in degrees are the decimals from the start as given, as a sweep writes
+/// its samples: 93 of the default 360 were their radians times `180/pi` (`5.000000000000001`,
+/// `20.000000000000004`), and from `--start 0.1` the start itself `0.10000000000000002`. Each
+/// is the double of the decimal it stands for (written with one decimal, read back).
+#[test]
+fn the_turn_s_angles_in_degrees_are_the_decimals_from_the_start() {
+    let engine = shipped("engine.kl");
+    // 150 rad per time unit in degrees.
+    let speed = "8594.366926962348";
+    for (start, samples) in [("0", 360), ("0.1", 12), ("-33.3", 100)] {
+        let args = ["dynamics", &engine, "--speed", speed, "--deg", "--start", start];
+        let (_, rows) = csv(&kinloop(&[&args[..], &["--samples", &samples.to_string()]].concat()));
+        assert_eq!(rows.len(), samples);
+        let first: f64 = start.parse().expect("a number");
+        for (k, row) in rows.iter().enumerate() {
+            let want: f64 = format!("{:.1}", first + 360.0 * k as f64 / samples as f64).parse().expect("a number");
+            assert_eq!(row[0], want, "--start {start}, sample {k}");
+        }
+    }
+}
