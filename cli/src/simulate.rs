@@ -75,7 +75,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("--max-steps 0 allows no step: give at least 1 (the default is {MAX_STEPS})")));
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
-    let table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, req.deg))?;
+    let mut table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, req.deg))?;
+    // The first row is the start, at time 0: its angle and speed as given, as `solve` writes
+    // the inputs given, not their radians times `180/π` (`--start 30 --deg` was written
+    // `29.999999999999996`). In radians the same numbers.
+    if let Some(start) = table.rows.first_mut() {
+        (start[1], start[2]) = (req.start, req.speed);
+    }
     crate::output::table(&table, "the table")
 }
 

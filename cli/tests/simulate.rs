@@ -228,3 +228,22 @@ fn a_time_too_short_for_a_step_is_a_usage_error() {
     assert!((phi / 1.5e-298 - 1.0).abs() <= 1e-15, "{phi}");
     assert!((omega / 150.0 - 1.0).abs() <= 1e-15, "{omega}");
 }
+
+/// The first row is the start at time 0, its angle and speed in degrees as given: `--start 30`
+/// was written `29.999999999999996` (its radians times `180/pi`). The same state as the run in
+/// radians from the same start, to a rounding of the conversion.
+#[test]
+fn the_start_in_degrees_is_written_as_given() {
+    let engine = shipped("engine.kl");
+    let run = |start: &str, speed: &str, deg: &[&str]| {
+        let args = ["simulate", &engine, "--start", start, "--speed", speed, "--time", "0.01", "--samples", "2"];
+        csv(&kinloop(&[&args[..], deg].concat())).1
+    };
+    for start in ["30", "70", "-0.1"] {
+        let rows = run(start, "8594.366926962348", &["--deg"]);
+        let given: f64 = start.parse().expect("a number");
+        assert_eq!(rows[0], [0.0, given, 8594.366926962348], "--start {start}");
+        let radians = run(&given.to_radians().to_string(), "150", &[]);
+        assert!((radians[0][1].to_degrees() - given).abs() <= 4.0 * f64::EPSILON * given.abs(), "{start}");
+    }
+}
