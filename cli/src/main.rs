@@ -185,7 +185,8 @@ enum Command {
         /// The inputs at the end.
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included (at most 10000000).
+        /// Samples, equally spaced, both ends included (at least 2, or 1 where `--to` equals
+        /// `--from`; at most 10000000).
         #[arg(long, default_value_t = 361, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.
@@ -384,7 +385,7 @@ enum Command {
         /// The inputs at the end.
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included (default 181, at most 100000); with
+        /// Samples, equally spaced, both ends included (default 181, at least 2, at most 100000); with
         /// `--grid`, the values of each input: one count for all or one per input (default: the
         /// most whose grid fits the page's frames, 26 per input for two inputs, 8 for three).
         #[arg(long, value_name = "N[,N...]", allow_hyphen_values = true)]

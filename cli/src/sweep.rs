@@ -36,15 +36,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let ni = model.inputs().len();
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
-    // Both ends are rows: one sample cannot be two different inputs (it wrote the row at
-    // `--from` alone, `--to` unread).
-    if req.samples == 1 && from != to {
-        return Err(exit::usage(format!(
-            "--samples 1 writes one row, and the table's rows include both ends (--from {} and --to {}): give at \
-             least 2 samples, or --to equal to --from",
-            req.from, req.to
-        )));
-    }
+    too_few_samples(req, from != to)?;
     // The angle inputs in degrees as given, whose samples the table writes.
     let degrees: Vec<Option<(f64, f64)>> = match req.deg {
         true => {
@@ -197,6 +189,27 @@ fn stream<W: Write, E>(
         s += 1;
     }
     Ok(None)
+}
+
+/// The usage error of too few `--samples` for the range, in the command line's terms. Both ends
+/// are rows: one sample cannot be two different inputs (it wrote the row at `--from` alone,
+/// `--to` unread), and none writes nothing. `--samples 0` was refused by the library's own
+/// message, "a sweep needs at least one sample", which sent a reader with two different ends to
+/// a second refusal at 1.
+fn too_few_samples(req: &Request, two_ends: bool) -> Result<(), Failed> {
+    let least = if two_ends { 2 } else { 1 };
+    if req.samples >= least {
+        return Ok(());
+    }
+    let rows = if req.samples == 0 { "no row" } else { "one row" };
+    Err(exit::usage(match two_ends {
+        true => format!(
+            "--samples {} writes {rows}, and the table's rows include both ends (--from {} and --to {}): give at \
+             least 2 samples, or --to equal to --from",
+            req.samples, req.from, req.to
+        ),
+        false => format!("--samples 0 writes no row: give at least 1 (the state at --from {})", req.from),
+    }))
 }
 
 /// The usage error of samples closer together than the inputs' doubles can place them: where

@@ -255,7 +255,16 @@ fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
     let none = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "1", "--samples", "0", "--params", params]);
     let err = String::from_utf8_lossy(&none.stderr);
     assert_eq!(none.status.code(), Some(2), "{err}");
-    assert!(err.contains("at least one sample"), "{err}");
+    // The bound of this range, not the library's "at least one sample", which one sample then
+    // failed too.
+    assert!(err.contains("--samples 0 writes no row") && err.contains("give at least 2 samples"), "{err}");
+    assert!(!err.contains("at least one sample"), "{err}");
+    assert!(none.stdout.is_empty());
+    // Without a range one sample is enough, and none is still too few.
+    let none = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "0", "--samples", "0", "--params", params]);
+    let err = String::from_utf8_lossy(&none.stderr);
+    assert_eq!(none.status.code(), Some(2), "{err}");
+    assert!(err.contains("--samples 0 writes no row: give at least 1"), "{err}");
     // One sample needs no range: the state at `from`.
     let one = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "0", "--samples", "1", "--params", params]);
     assert_eq!(csv(&one).1.len(), 1);

@@ -77,6 +77,19 @@ fn the_help_states_the_limit() {
     }
 }
 
+/// The help of the commands whose samples are both ends of a range states the least count too:
+/// it said "at most" alone, and 0 and 1 were refused with a bound the reader had not been told.
+#[test]
+fn the_help_states_the_least_count() {
+    for (command, least) in [("sweep", "at least 2, or 1 where `--to` equals `--from`"), ("animate", "at least 2")] {
+        let out = kinloop(&[command, "--help"]);
+        let help = String::from_utf8_lossy(&out.stdout);
+        // The option's own entry: from its name to the next option's.
+        let entry = help.split("\n      --samples <").nth(1).and_then(|rest| rest.split("\n      --").next());
+        assert!(entry.is_some_and(|entry| entry.contains(least)), "{command}: {help}");
+    }
+}
+
 /// An animation records every sample's pose in full (a few kilobytes each, where a sweep's row
 /// takes a hundred bytes): its samples are bounded lower, so that the largest count taken fits
 /// in memory (ten million took some twenty gigabytes), one more is refused.
