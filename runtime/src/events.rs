@@ -105,6 +105,19 @@ pub enum EventKind {
     LimitPosition,
     /// A block's Jacobian is singular with solutions on both sides and its determinant changes
     /// sign: a change point (bifurcation) where the assembly mode can change.
+    ///
+    /// A sweep cannot tell a change point from a regular position where two assembly modes
+    /// pass nearer each other than the residual tolerance separates them, its pivot ratio below
+    /// [`singular_pivot`](crate::SweepConfig::singular_pivot): such a position is reported as a
+    /// crossing too, and with [`AtSingular::Continue`](crate::AtSingular::Continue) the sweep
+    /// goes on in the other assembly mode. A four-bar whose coupler and follower come within
+    /// about `0.9 * singular_pivot` rad of lying in line is one: at the default `1e-6`, a
+    /// crank-rocker within a few `1e-14` of a change point (its
+    /// [`Grashof::margin`](crate::metrics::Grashof::margin), a threshold that grows as the
+    /// square of `singular_pivot`) meets a `SingularCrossing` at its dead centre instead of
+    /// turning fully, and a triple rocker as near meets one instead of its `LimitPosition`. (A
+    /// position as near singular with no other mode beside it, a slide brushing its pivot,
+    /// stops the sweep with [`Error::NearSingular`](crate::Error::NearSingular) instead.)
     SingularCrossing,
     /// A corner of the solution curve where the Jacobian is regular: the positions are
     /// continuous but the velocity analogs jump (the acceleration is unbounded there), as a

@@ -176,3 +176,47 @@ fn samples_beside_a_change_point_are_all_produced_on_the_branch() {
     }
     eprintln!("a state standing for a sample in a crossing's band: at most {farthest:.1e} past it");
 }
+
+/// A crank-rocker nearer a change point than the residual tolerance can tell apart, as
+/// `EventKind::SingularCrossing` documents: `a + d = 4` and `b + c = 4 + 2^-44` (exact in
+/// `f64`, a Grashof margin of `2^-44 / 8`, about `7e-15`), so that at `phi = pi` its coupler and
+/// rocker come within `sqrt(2 * 2^-44)`, about `3.4e-7` rad, of lying in line, below the
+/// default `singular_pivot`. The sweep meets a `SingularCrossing` there rather than turning
+/// fully, and with `AtSingular::Continue` ends the turn in the other assembly mode (the
+/// reference's other side). A triple rocker as near (`b + c = 4 - 2^-44`) meets a crossing
+/// rather than its limit position; one `2^10` times farther (`1.1e-5` rad from in line) turns
+/// fully, with no event. In any unit: at sizes 1 and `2^-20`, exact scalings.
+///
+/// Tolerances: the crossing is at `pi` to within the square root of the residual tolerance
+/// (`1e-6`, as `Event::x` says of branches meeting at so small an angle); the end state is
+/// pinned by the residual tolerance to `tol::SOLVE` over its pivot ratio, far from singular.
+#[test]
+fn a_crank_rocker_within_the_residual_tolerance_of_a_change_point_meets_a_crossing() {
+    let stop = SweepConfig::default();
+    let through = SweepConfig::default().with_at_singular(AtSingular::Continue);
+    let (from, to) = (0.1, 0.1 + TAU);
+    for k in [1.0, 1.0 / 1_048_576.0] {
+        let four_bar = |excess: f64| FourBar { a: k, b: 2.0 * k, c: (2.0 + excess) * k, d: 3.0 * k };
+        let sweep = |m: &FourBar, cfg: SweepConfig| {
+            let guess = four_bar_angles(m.a, m.b, m.c, m.d, from, 1.0).expect("assembles at the start");
+            Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(m, [from], [to], 37, guess).unwrap().with_config(cfg).run()
+        };
+        for excess in [2f64.powi(-44), -(2f64.powi(-44))] {
+            let m = four_bar(excess);
+            let r = sweep(&m, stop);
+            let what = format!("size {k:e}, b + c - a - d = {excess:e} of the size");
+            let kinds: Vec<EventKind> = r.events.iter().map(|e| e.kind).collect();
+            assert_eq!(kinds, [EventKind::SingularCrossing], "{what}: {:?}", r.stop);
+            assert!((r.events[0].x[0] - PI).abs() < 1e-6, "{what}: {:?}", r.events);
+        }
+        let m = four_bar(2f64.powi(-44));
+        let r = sweep(&m, through);
+        assert!(r.is_completed(), "size {k:e}: {:?}", r.stop);
+        let end = r.states.last().expect("a state per sample");
+        let other = four_bar_angles(m.a, m.b, m.c, m.d, to, -1.0).expect("assembles at the end");
+        let pivot = end.health.min_pivot;
+        assert!(apart(&[end.q[0], end.q[1]], &other) <= tol::SOLVE / pivot, "size {k:e}: {end:?} against {other:?}");
+        let far = sweep(&four_bar(2f64.powi(-34)), stop);
+        assert!(far.is_completed() && far.events.is_empty(), "size {k:e}: {:?}, {:?}", far.stop, far.events);
+    }
+}

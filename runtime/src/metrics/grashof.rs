@@ -75,6 +75,9 @@ pub struct Grashof {
     pub shortest: Link,
     /// `(s + l) - (p + q)` divided by the sum of the four lengths: negative for Grashof
     /// linkages, zero at a change point, positive for triple rockers (a scale-free margin).
+    /// A sweep takes a linkage within a few `1e-14` of a change point (at the default
+    /// `SweepConfig::singular_pivot`) for one: see
+    /// [`EventKind::SingularCrossing`](crate::EventKind::SingularCrossing).
     pub margin: f64,
     /// The input turns fully relative to the ground (in a change point: through the flat position).
     pub input_turns: bool,
