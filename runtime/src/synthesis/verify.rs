@@ -100,18 +100,26 @@ fn in_order(x: &[f64], repeat: &[bool], angle: bool, wraps: bool) -> Option<Vec<
 /// transmission angle over the input's range (see [`FourBarClass`]); `None` where the lengths
 /// are no four-bar that moves (one not positive, or one at least as long as the other three
 /// together).
-pub(crate) fn four_bar_class([d, a, b, c]: [f64; 4]) -> Option<FourBarClass> {
+pub(crate) fn four_bar_class(lengths: [f64; 4]) -> Option<FourBarClass> {
+    let [d, a, b, c] = lengths;
     let g = grashof(FourBarLinks { ground: d, input: a, coupler: b, output: c }).ok()?;
-    let min_transmission = if g.input_turns {
-        // The distance from the input's tip to the output's pivot runs from |d - a| to d + a,
-        // and the cosine of the transmission angle is linear in its square: the acute angle
-        // is smallest at one of the two ends.
-        let acute = |e: f64| ((b * b + c * c - e * e) / (2.0 * b * c)).abs().min(1.0).acos();
-        acute(d - a).min(acute(d + a))
-    } else {
-        0.0
-    };
+    let min_transmission = if g.input_turns { min_transmission_of_turning(lengths) } else { 0.0 };
     Some(FourBarClass { class: g.class, margin: g.margin, min_transmission })
+}
+
+/// The smallest transmission angle of a four-bar `[ground, input, coupler, output]` whose input
+/// turns fully (lengths finite and positive, as `grashof` checked).
+///
+/// The distance from the input's tip to the output's pivot runs from |d - a| to d + a, and the
+/// cosine of the transmission angle is linear in its square: the acute angle is smallest at one
+/// of the two ends. The lengths are taken in units of the largest one's power of two (exact):
+/// their squares left the range of `f64` beyond about `1e154` (and lost their digits below about
+/// `1e-154`), the cosine came out NaN, read as 1, and the angle as 0, in no unit but those.
+fn min_transmission_of_turning(lengths: [f64; 4]) -> f64 {
+    let unit = crate::number::pow2_at_most(lengths.iter().copied().fold(0.0, f64::max));
+    let [d, a, b, c] = lengths.map(|v| v / unit);
+    let acute = |e: f64| ((b * b + c * c - e * e) / (2.0 * b * c)).abs().min(1.0).acos();
+    acute(d - a).min(acute(d + a))
 }
 
 impl<K: SensKernel> ProblemOf<K> {
@@ -319,8 +327,29 @@ impl<K: SensKernel> ProblemOf<K> {
 
 #[cfg(test)]
 mod tests {
-    use super::in_order;
+    use super::{four_bar_class, in_order};
+    use crate::metrics::GrashofClass;
     use std::f64::consts::TAU;
+
+    /// The crank-rocker ground 4, input 1, coupler 3.5, output 3 has its input along the ground
+    /// line where the input's tip is 3 and 5 from the output's pivot: by the law of cosines the
+    /// coupler and output meet there at `acos(12.25 / 21) = acos(7 / 12)` and
+    /// `acos(-3.75 / 21) = acos(-5 / 28)`, acute `acos(5 / 28)`, so its smallest transmission
+    /// angle is `acos(7 / 12)`, in any unit. With lengths near `1e160` or beyond (their squares
+    /// overflow) or near `1e-160` and below (their squares underflow) it read 0, a dead point.
+    ///
+    /// Tolerance: the lengths scaled by a power of ten carry a rounding each, the cosine a few
+    /// more, about `1e-15` with `acos`'s slope (`1 / sin`, 1.23) there; `1e-14` keeps a factor
+    /// of ten over it.
+    #[test]
+    fn the_smallest_transmission_angle_of_a_turning_input_is_the_same_in_any_unit() {
+        let want = (7.0f64 / 12.0).acos();
+        for scale in [1e-300, 1e-200, 1e-160, 1e-3, 1.0, 1e3, 1e160, 1e200, 1e300, 4e307] {
+            let class = four_bar_class([4.0, 1.0, 3.5, 3.0].map(|v| v * scale)).expect("a four-bar that moves");
+            assert_eq!(class.class, GrashofClass::CrankRocker, "{scale:e}: {class:?}");
+            assert!((class.min_transmission - want).abs() < 1e-14, "{scale:e}: {class:?}, want {want}");
+        }
+    }
 
     /// A target repeated is one input whichever way the rounding falls; inputs all one, or out
     /// of order by more than rounding, are an order defect; an angle may pass its zero.
