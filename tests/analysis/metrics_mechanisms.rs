@@ -201,3 +201,32 @@ fn the_extremes_up_to_a_limit_position_do_not_depend_on_the_samples() {
         assert_close!(max[0].value(), c, 1e-12, "{samples} samples: {r}");
     }
 }
+
+kinloop::mechanism! {
+    /// Inverted slider-crank: crank `r` about the origin, its pin sliding along a link pivoted
+    /// at `(d, 0)`, `s` from the pivot to the pin at angle `theta`.
+    pub struct SlideByPivot {
+        params r, d;
+        input phi;
+        unknowns s = 1, theta = 3;
+        loop pin: r @ phi == (d, 0) + s @ theta;
+    }
+}
+
+/// A sweep that stops for another reason than a limit position of the input is the limit
+/// search's error, as `Limits::run` documents, not a report of the range before it: a crank a
+/// hundred-millionth longer than the frame brings its pin within `s = r - d = 1e-8` of the
+/// slide's pivot at `phi = 0` (mod `2 pi`), where `s = sqrt(r^2 + d^2 - 2 r d cos phi)` and the
+/// block's pivot ratio, about `s / (r + d)`, falls below the default `singular_pivot` (1e-6)
+/// without a limit position (the crank turns fully) or a crossing: `Error::NearSingular`,
+/// located where `s` is a few millionths, within `1e-5` rad of `2 pi`.
+#[test]
+fn a_sweep_stopped_short_of_a_limit_position_is_the_searchs_error() {
+    for k in [1.0, 1e-6] {
+        let m = SlideByPivot { r: (1.0 + 1e-8) * k, d: k };
+        let guess = m.position(2.0, &m.guess(2.0)).unwrap().0;
+        let r = Limits::new(&m, 2.0, 2.0 + TAU).guess(guess).columns(&[SlideByPivot::COL.theta]).run();
+        let Err(kinloop::Error::NearSingular { at, .. }) = &r else { panic!("size {k:e}: {r:?}") };
+        assert!((at.inputs[0].1 - TAU).abs() < 1e-5, "size {k:e}: {r:?}");
+    }
+}

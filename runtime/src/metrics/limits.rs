@@ -32,8 +32,9 @@ pub struct OutputLimits {
 /// Dead centres and limit positions of one sweep.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LimitReport {
-    /// The input range actually swept: `to` when the sweep went through, the located limit
-    /// position of the input where one ended it, else the last sample before the sweep stopped.
+    /// The input range actually swept, from `from`: to `to` when the sweep went through, to the
+    /// located limit position of the input where one ended it. A sweep that stops for any other
+    /// reason gives no report but its error (see [`Limits::run`]).
     pub reached: (f64, f64),
     /// Events of the sweep: a limit position of the input ends it; singular crossings are
     /// passed (and listed).
@@ -153,7 +154,11 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
     ///
     /// A limit position of the input ends the range reached there (the extremes are located up to
     /// it, whatever the samples: those between the last sample and the limit too). Errors: a
-    /// start that cannot be assembled, a column outside the mechanism.
+    /// start that cannot be assembled, a column outside the mechanism, and a sweep that stops
+    /// before the end for another reason than a limit position of the input: its error (it
+    /// passes within [`SweepConfig::singular_pivot`] of a singular position and finds neither
+    /// a limit position nor a crossing there, `Error::NearSingular`; a crossing it cannot
+    /// pass; a step that fails), with no report of the range before it.
     pub fn run<const NO: usize>(self) -> Result<LimitReport, Error>
     where
         M: Mechanism<N, 1, NO>,
@@ -168,7 +173,8 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
 /// `to` (either direction) in `samples` equally spaced inputs, passing singular crossings, and
 /// reports the input's limit positions and crossings and the located extremes of `columns`
 /// (typed handles, names or indices, see [`ColumnOf`]) over the range reached. A column `k`
-/// does not have is an error, even where the range reached is the start alone.
+/// does not have is an error, even where the range reached is the start alone; so is a sweep
+/// that stops for another reason than a limit position of the input (see [`Limits::run`]).
 pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
     k: K,
     from: f64,
