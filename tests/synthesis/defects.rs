@@ -293,3 +293,58 @@ fn a_target_missed_by_more_than_max_error_is_a_miss() {
         );
     }
 }
+
+kinloop::mechanism! {
+    /// A dyad driven by a slider: the slider's joint at `(u, 0)` (a length input), coupler `b`,
+    /// rocker `c` pivoted at `(d, h)`; the point `p` at `e` from the slider's joint, `alpha` off
+    /// the coupler.
+    #[kinloop(sensitivities)]
+    pub struct SlideDyad {
+        params b = 3.0, c = 2.5, d = 1.0, h = 2.0, e = 1.5, alpha = 0.6;
+        input u;
+        unknowns beta = 1.0, gamma = 2.5;
+        loop abcd: (u, 0) + b @ beta == (d, h) + c @ gamma;
+        point p = (u, 0) + e @ (beta + alpha);
+    }
+}
+
+/// The smallest transmission angle over the motion checked is located between the samples in
+/// any unit, for a length input too. The joint's distance to the rocker's pivot,
+/// `L^2 = (u - d)^2 + h^2`, is least at `u = d`, where by the law of cosines
+/// `cos mu = (b^2 + c^2 - h^2) / (2 b c) = 11.25 / 15`: the smallest transmission angle is
+/// `acos(0.75)`, between the samples of the stretch from the target at 0.3 to the one at 1.45
+/// (the nearest 0.019 away, 3.5e-5 rad larger). The path's direction was normalised by the sum
+/// of the squares of its components, the input's range: at lengths of `2^600` (`4e180`) that
+/// overflowed, and the angle fell back to the samples' smallest. (Far below the unit a length
+/// input's acceleration analogs, `1 / length^2`, leave the range of `f64` themselves.)
+///
+/// Tolerance: the located minimum is the closed form's to the solves' accuracy (`tol::SOLVE`).
+#[test]
+fn the_smallest_transmission_angle_over_a_length_input_is_located_in_any_unit() {
+    let us = [-0.7, 0.3, 1.45, 2.0];
+    let want = 0.75f64.acos();
+    for k in [1.0, 2f64.powi(600)] {
+        let m = SlideDyad { b: 3.0 * k, c: 2.5 * k, d: k, h: 2.0 * k, e: 1.5 * k, alpha: 0.6 };
+        let inputs: Vec<f64> = us.iter().map(|u| u * k).collect();
+        let mut q = m.guess(inputs[0]);
+        let mut targets = Vec::new();
+        let mut guesses = Vec::new();
+        for &u in &inputs {
+            let s = m.kinematics(u, &q).unwrap();
+            q = s.q;
+            targets.push([s.out.p.x, s.out.p.y]);
+            guesses.push(<[f64; 2]>::from(s.q));
+        }
+        let task = Task::path("p", targets).timed(inputs.clone());
+        let transmission = Constraints::default().with_transmission("beta", "gamma", 0.0);
+        let problem = Problem::new(m, &Design::new().var("e", 0.75 * k, 3.0 * k), &task)
+            .unwrap()
+            .with_guesses(guesses)
+            .unwrap()
+            .with_constraints(&transmission)
+            .unwrap();
+        let cand = Search::default().refine(&problem, &[m.e]).unwrap();
+        let min = cand.min_transmission.unwrap();
+        assert!((min - want).abs() < crate::support::tol::SOLVE, "size {k:e}: {min} against {want}: {cand:?}");
+    }
+}

@@ -122,6 +122,22 @@ fn min_transmission_of_turning(lengths: [f64; 4]) -> f64 {
     acute(d - a).min(acute(d + a))
 }
 
+/// The fraction of the straight path `from + s dir` at each of the inputs `xs`: the projection of
+/// `x - from` on `dir` over `|dir|^2`; empty where `dir` is zero or not finite. Taken in units of
+/// the largest component of `dir` (a power of two, exact): a length input's range squared left
+/// the range of `f64` beyond about `1e154` of the unit (every fraction 0, not increasing), and
+/// the smallest transmission angle fell back to the samples' smallest.
+fn path_fractions<'a>(xs: impl Iterator<Item = &'a [f64]>, from: &[f64], dir: &[f64]) -> Vec<f64> {
+    let largest = dir.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    if !(largest > 0.0 && largest.is_finite()) {
+        return Vec::new();
+    }
+    let unit = crate::number::pow2_at_most(largest);
+    let dir: Vec<f64> = dir.iter().map(|d| d / unit).collect();
+    let norm2: f64 = dir.iter().map(|d| d * d).sum();
+    xs.map(|x| x.iter().zip(from).zip(&dir).map(|((x, a), d)| (x - a) / unit * d).sum::<f64>() / norm2).collect()
+}
+
 impl<K: SensKernel> ProblemOf<K> {
     /// The candidate of the local solution `z` (evaluated as `e`), verified. An error only where
     /// the kernel refuses `z`'s parameters (which `params` sizes to its count).
@@ -150,12 +166,8 @@ impl<K: SensKernel> ProblemOf<K> {
         // The path x(s) = from + s dir, s from 0 to 1.
         let from = first.x();
         let dir: Vec<f64> = last.x().iter().zip(from).map(|(b, a)| b - a).collect();
-        let norm2: f64 = dir.iter().map(|d| d * d).sum();
-        let s: Vec<f64> = run
-            .iter()
-            .map(|k| k.x().iter().zip(from).zip(&dir).map(|((x, a), d)| (x - a) * d).sum::<f64>() / norm2)
-            .collect();
-        if run.len() < 2 || !(norm2 > 0.0 && s.windows(2).all(|w| w[1] > w[0])) {
+        let s = path_fractions(run.iter().map(|k| k.x()), from, &dir);
+        if run.len() < 2 || s.is_empty() || !s.windows(2).all(|w| w[1] > w[0]) {
             return sampled;
         }
         let jets = |col| run.iter().zip(&s).map(|(k, &s)| jet_along(col, k, s, &dir)).collect::<Vec<_>>();
