@@ -231,3 +231,52 @@ fn a_sweep_stopped_short_of_a_limit_position_is_the_searchs_error() {
         assert!((at.inputs[0].1 - TAU).abs() < 1e-5, "size {k:e}: {r:?}");
     }
 }
+
+kinloop::mechanism! {
+    /// A follower moved by a uniform-velocity (triangular) law each turn: it rises by `h` while
+    /// the cam turns through `p0` and falls back over the rest of the turn, with corners (kinks)
+    /// at `p0` and at every whole turn.
+    pub struct UniformVelocityCam {
+        params p0, h;
+        input phi;
+        unknowns s = 0;
+        let u = wrap(phi, 2 * pi);
+        eq law: s == h * min(u / p0, (2 * pi - u) / (2 * pi - p0));
+    }
+}
+
+/// Extremes at the corners of a law, where the velocity analog jumps from one sign to the other
+/// instead of passing through zero, are located there: the uniform-velocity cam's follower is
+/// highest (`h`) at `phi = p0` and lowest (0) at `2 pi`, so its time ratio is
+/// `(2 pi - p0) / p0` and its limit positions lie at those corners, in any unit and at any
+/// sample count. The root search answered the point of smallest analog it had evaluated, an
+/// end of its first bracket (every point on the falling side has the same analog): the sample
+/// after each corner, a ratio of 2.0 for 2.14 at 37 samples, 1.71 for 1.73 at 361.
+///
+/// Tolerance: the search closes its bracket on the corner to a few units of rounding of the
+/// input, `1e-15` of its 6.3 rad; the value follows with the law's slope, at most `h / 2`.
+/// `tol::ULPS` keeps a factor of about ten.
+#[test]
+fn extremes_at_the_corners_of_a_law_are_located_at_the_corners() {
+    let from = 0.5;
+    for (p0, h) in [(2.0, 1.0), (2.3, 1e-6)] {
+        let m = UniformVelocityCam { p0, h };
+        for samples in [37, 361] {
+            let what = format!("p0 {p0}, h {h:e}, {samples} samples");
+            let turn = Sampled::sweep(&m, from, from + TAU, samples, [0.0]).unwrap();
+            let t = turn.time_ratio(UniformVelocityCam::COL.s).unwrap();
+            assert_close!(t.max.x, p0, tol::ULPS, "{what}: {t:?}");
+            assert_close!(t.min.x, TAU, tol::ULPS, "{what}: {t:?}");
+            assert_close!(t.rising, p0, tol::ULPS, "{what}: {t:?}");
+            assert_close!(t.ratio(), (TAU - p0) / p0, tol::ULPS, "{what}: {t:?}");
+            let r =
+                Limits::new(&m, from, from + TAU).samples(samples).columns(&[UniformVelocityCam::COL.s]).run().unwrap();
+            let ex = &r.outputs[0].extremes;
+            assert_eq!(ex.len(), 2, "{what}: {r}");
+            assert_close!(ex[0].x(), p0, tol::ULPS, "{what}: {r}");
+            assert_close!(ex[0].value(), h, tol::ULPS * h, "{what}: {r}");
+            assert_close!(ex[1].x(), TAU, tol::ULPS, "{what}: {r}");
+            assert_close!(ex[1].value(), 0.0, tol::ULPS * h, "{what}: {r}");
+        }
+    }
+}

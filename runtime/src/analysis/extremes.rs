@@ -1,4 +1,5 @@
-//! Extreme values of a quantity, located precisely as roots of its velocity analog.
+//! Extreme values of a quantity, located precisely as roots of its velocity analog (or, at a
+//! corner of the motion, a kink, where the analog jumps from one sign to the other).
 //!
 //! The samples of a sweep bracket every sign change of the velocity analog `v'`; each bracket is
 //! then refined by a safeguarded Newton iteration on `v'` using the acceleration analog `v''`
@@ -27,12 +28,15 @@ pub enum Extreme {
     Min,
 }
 
-/// A local extreme of a quantity: where its velocity analog vanishes and changes sign.
+/// A local extreme of a quantity: where its velocity analog vanishes and changes sign, or
+/// jumps from one sign to the other at a corner of the motion (a kink: `abs`, `min`, `max`,
+/// `clamp` in the declaration, as a uniform-velocity cam law has).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LocalExtreme {
     /// A maximum or a minimum.
     pub kind: Extreme,
-    /// The quantity, its (vanishing) velocity analog and its acceleration analog at the extreme.
+    /// The quantity, its velocity analog (vanishing; at a kink, one side's) and its
+    /// acceleration analog at the extreme (at a kink, within a few units of rounding of it).
     pub at: Jet,
 }
 
@@ -59,7 +63,10 @@ fn sign_change(a: f64, b: f64) -> bool {
 /// Converges quadratically near a simple root; always keeps a bracket, so it cannot diverge. It
 /// stops when the step or the bracket falls below `2 eps |x|` (a couple of units of
 /// rounding; for a root near `x = 0` an absolute floor of `1e-6` times the initial bracket applies),
-/// or after 100 evaluations.
+/// or after 100 evaluations, and answers the end of the final bracket where `|h|` is smaller.
+/// Where `h` jumps across zero instead of passing through it (the velocity analog at a corner
+/// of the motion, a kink), the bracket closes on the jump: the answer is the jet there, to the
+/// same tolerance.
 ///
 /// Errors (`InvalidArgument`): no sign change of `h` between the ends, a bracket whose width
 /// is not finite, a value of `h` not finite; and those of `eval`.
@@ -109,9 +116,11 @@ pub fn bracketed_root(
     // Absolute floor of the tolerances, for a root at or near x = 0.
     let floor = 1e-6 * dx_old;
     let mut dx = dx_old;
-    // The evaluated point with the smallest |h| is the answer when the tolerances are met.
+    // The answer is the final bracket's end with the smaller |h|: the root lies between them.
+    // Not the evaluated point of smallest |h| over the whole search: where h jumps across zero
+    // (at a kink) every point on one side has about the same |h|, and an end of the first
+    // bracket, a sample spacing from the kink, stood for the root there.
     let better = |a: Jet, b: Jet| if h(&b).0.abs() < h(&a).0.abs() { b } else { a };
-    let mut best = cur;
     for _ in 0..100 {
         let (f, df) = h(&cur);
         let (a, b) = (neg.x.min(pos.x), neg.x.max(pos.x));
@@ -129,7 +138,7 @@ pub fn bracketed_root(
         };
         let scale = x_new.abs() + floor;
         if dx.abs() <= 2.0 * f64::EPSILON * scale || x_new == cur.x {
-            return Ok(best);
+            return Ok(better(neg, pos));
         }
         let next = eval(x_new)?;
         let (fn_, _) = h(&next);
@@ -145,12 +154,11 @@ pub fn bracketed_root(
             pos = next;
         }
         cur = next;
-        best = better(best, next);
         if (pos.x - neg.x).abs() <= 2.0 * f64::EPSILON * scale {
-            return Ok(best);
+            return Ok(better(neg, pos));
         }
     }
-    Ok(best)
+    Ok(better(neg, pos))
 }
 
 /// All local extremes of a quantity sampled at `samples` (jets in increasing `x`): every sign
