@@ -51,19 +51,27 @@ impl Fourier {
 
     /// The truncated series up to harmonic `m` (at most [`Fourier::harmonics`]) at `x`, with its
     /// first and second derivatives with respect to `x`.
+    ///
+    /// Scale-free in the input's unit: the phase is the fraction of the period reached, and
+    /// each derivative is a sum over the harmonics divided by the period once per order, so a
+    /// period in a tiny or a huge unit gives the same values (the derivatives scaled by the
+    /// unit's powers). The frequency `2 pi / T` itself overflows for a period below about
+    /// `3.5e-308`, and its square for one below about `5e-154` (or underflows to zero for one
+    /// above about `4e154`), where the series and its derivatives need not.
     pub fn eval_upto(&self, m: usize, x: f64) -> (f64, f64, f64) {
-        let w = TAU / self.period;
-        let theta = w * (x - self.x0);
-        let (mut v, mut d1, mut d2) = (self.a0, 0.0, 0.0);
+        let theta = TAU * ((x - self.x0) / self.period);
+        let (mut v, mut s1, mut s2) = (self.a0, 0.0, 0.0);
         for k in 1..=m.min(self.a.len()) {
-            let kw = k as f64 * w;
-            let (s, c) = (k as f64 * theta).sin_cos();
+            let kf = k as f64;
+            let (s, c) = (kf * theta).sin_cos();
             let (a, b) = (self.a[k - 1], self.b[k - 1]);
             v += a * c + b * s;
-            d1 += kw * (b * c - a * s);
-            d2 -= kw * kw * (a * c + b * s);
+            // Derivatives with respect to the phase; `d theta / dx = 2 pi / T` comes after.
+            s1 += kf * (b * c - a * s);
+            s2 -= kf * kf * (a * c + b * s);
         }
-        (v, d1, d2)
+        let per_period = |sum: f64| TAU * (sum / self.period);
+        (v, per_period(s1), TAU * per_period(s2 / self.period))
     }
 
     /// The series with every harmonic held, at `x`.
@@ -200,6 +208,55 @@ mod tests {
         let f = fourier(&s, x0, period, 7).unwrap();
         assert!((f.amplitude(1) - 1.2f64.hypot(0.6)).abs() < 1e-13);
         assert_eq!(f.amplitude(9), 0.0);
+    }
+
+    /// The series and its derivatives in any unit of the input: a period of 2.5 in units of
+    /// `u` (and the quantity a length in that unit) gives the same value and analogs as in
+    /// units of 1, scaled by `u`'s powers, against the closed form. By a power of two the
+    /// samples, coefficients and period scale exactly, so only the evaluation's rounding is
+    /// left: the tolerances of `trigonometric_polynomial_is_recovered_exactly`. The frequency
+    /// `2 pi / T` squared overflowed at `u = 2^-1000` (the second derivative infinite or NaN)
+    /// and underflowed at `u = 2^1000` (zero); a period below 3.5e-308 made the value NaN.
+    #[test]
+    fn the_series_is_scale_free_in_the_unit_of_the_input() {
+        let a0 = 0.7;
+        let a = [1.2, -0.4, 0.0, 0.05, 0.3, -0.01, 0.002];
+        let b = [-0.6, 0.25, 0.125, 0.0, -0.2, 0.03, -0.004];
+        // The polynomial in units of 1, period 2.5 from 0.3, and its first two derivatives.
+        let (x0, period) = (0.3, 2.5);
+        let w = TAU / period;
+        let jet = |x: f64| {
+            let th = w * (x - x0);
+            let mut out = [a0, 0.0, 0.0];
+            for k in 1..=7 {
+                let (kw, (sn, cs)) = (k as f64 * w, (k as f64 * th).sin_cos());
+                let (a, b) = (a[k - 1], b[k - 1]);
+                out[0] += a * cs + b * sn;
+                out[1] += kw * (b * cs - a * sn);
+                out[2] -= kw * kw * (a * cs + b * sn);
+            }
+            out
+        };
+        for u in [2f64.powi(-1000), 2f64.powi(-500), 1.0, 2f64.powi(500), 2f64.powi(1000)] {
+            let s: Vec<f64> = (0..16).map(|j| u * jet(x0 + period * j as f64 / 16.0)[0]).collect();
+            let f = fourier(&s, x0 * u, period * u, 7).unwrap();
+            for x in [0.0, 0.77, 2.9] {
+                let (y, d1, d2) = f.eval_upto(7, x * u);
+                let want = jet(x);
+                assert!((y / u - want[0]).abs() < 1e-13, "u = {u:e}: {y:e} vs {}", want[0]);
+                assert!((d1 - want[1]).abs() < 1e-12, "u = {u:e}: {d1:e} vs {}", want[1]);
+                assert!((d2 * u - want[2]).abs() < 1e-11, "u = {u:e}: {d2:e} vs {}", want[2]);
+            }
+        }
+        // A dimensionless quantity over a period of 2.5e-308: its value, where the frequency
+        // overflows (its derivatives are beyond f64 in that unit).
+        let p = 2.5e-308;
+        let s: Vec<f64> = (0..16).map(|j| jet(x0 + period * j as f64 / 16.0)[0]).collect();
+        let f = fourier(&s, 0.0, p, 7).unwrap();
+        for x in [0.0, 0.77, 2.9] {
+            let y = f.eval_upto(7, (x - x0) / period * p).0;
+            assert!((y - jet(x)[0]).abs() < 1e-13, "{y} vs {}", jet(x)[0]);
+        }
     }
 
     #[test]
