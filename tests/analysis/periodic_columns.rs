@@ -121,3 +121,40 @@ fn a_column_that_stands_still_has_no_extremes() {
         assert!((e[0].value() + 4.0 * s).abs() < 1e-12 * s && (e[1].value() + 2.0 * s).abs() < 1e-12 * s, "{e:?}");
     }
 }
+
+kinloop::mechanism! {
+    /// The centred slider-crank of [`SliderPin`] with the pin's height over the rod's length as
+    /// a ratio: `r sin(phi) - l sin(psi)` is zero in exact arithmetic (the pin stays on the
+    /// line of the slider), so the ratio is rounding alone, some 1e-16 of the sines summed.
+    pub struct SliderRatio {
+        params r, l;
+        input phi;
+        unknowns psi = 0, x = -l;
+        loop oabo: r @ phi == (x, 0) + l @ psi;
+        output h = (r * sin(phi) - l * sin(psi)) / l;
+    }
+}
+
+/// A dimensionless column that stands still in exact arithmetic (a ratio of lengths that is
+/// zero) is periodic, has no extremes and no net travel, at every scale: judged against its
+/// own size, rounding, the noise at the start and the end of a turn made it "not periodic",
+/// and the sign changes of its analog extremes. A pure number's rounding is absolute (a few
+/// ulps of the sines and ratios it is computed from, of size one), as an angle's is.
+#[test]
+fn a_ratio_that_stands_still_is_periodic() {
+    for s in SCALES {
+        let m = SliderRatio { r: s, l: 3.0 * s };
+        let turn = Sampled::sweep(&m, 0.1, 0.1 + TAU, 73, [0.0, -3.9 * s]).unwrap();
+        let jets = turn.jets(SliderRatio::COL.h).unwrap();
+        // The exact value is zero: the samples are rounding, a solve's 1e-12 at most.
+        assert!(jets.iter().all(|j| j.value.abs() < 1e-12), "scale {s}: {jets:?}");
+        let f = turn.fourier(SliderRatio::COL.h, 3).unwrap_or_else(|e| panic!("scale {s}: {e}"));
+        assert!(f.a0.abs() < 1e-12 && f.a.iter().chain(&f.b).all(|c| c.abs() < 1e-12), "scale {s}: {f:?}");
+        let u = turn.unbalance(SliderRatio::COL.h, 1).unwrap_or_else(|e| panic!("scale {s}: {e}"));
+        assert!(u.max_abs < 1e-12, "scale {s}: {u:?}");
+        assert_eq!(turn.extremes(SliderRatio::COL.h).unwrap(), [], "scale {s}");
+        let run = Sampled::sweep(&m, 0.1, 0.1 + 0.9 * TAU, 65, [0.0, -3.9 * s]).unwrap();
+        let r = run.dwells(SliderRatio::COL.h);
+        assert!(matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("no net travel")), "scale {s}: {r:?}");
+    }
+}

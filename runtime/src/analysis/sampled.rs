@@ -707,7 +707,8 @@ impl<K: Kernel> SampledOf<K> {
     /// Whether a column stands still over a search's points (`jets`, and the `corners` at the
     /// crossings among them): all its values within the rounding of what it is computed from
     /// ([`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of `pi` for an angle, of the
-    /// mechanism's largest length for a length; exactly equal otherwise). Its velocity analog is
+    /// mechanism's largest length for a length, of 1 for a pure number; exactly equal
+    /// otherwise). Its velocity analog is
     /// then rounding too, and the sign changes of that noise are no extremes: a parallelogram's
     /// coupler angle, zero at every crank angle, had thirty "extremes" a turn, at crank angles
     /// the rounding chose.
@@ -917,8 +918,12 @@ impl<K: Kernel> SampledOf<K> {
     /// * a length: at least the largest length of any column over the samples, the
     ///   mechanism's own size (not an absolute floor: the unit of length is the user's, and a
     ///   mechanism a micrometre across is judged as one a metre across);
-    /// * anything else (a ratio, a time): its own size alone; kinloop does not know what it is
-    ///   computed from.
+    /// * a pure number (a ratio of lengths, a sine): at least 1, as an angle; its rounding is
+    ///   absolute too, a few ulps of the sines and ratios of size one it is computed from, in
+    ///   any unit of length (a ratio that is zero in exact arithmetic, the height of a centred
+    ///   slider's pin over its rod, was rounding judged against itself: "not periodic");
+    /// * anything else (a time, a quantity whose kind is not inferred): its own size alone;
+    ///   kinloop does not know what it is computed from.
     fn natural_scale(&self, c: ColumnIndex, jets: &[Jet]) -> f64 {
         let own = jets.iter().map(|j| j.value.abs()).fold(0.0, f64::max);
         own.max(self.kind_scale(c))
@@ -926,11 +931,12 @@ impl<K: Kernel> SampledOf<K> {
 
     /// The size of what a column of `c`'s kind is computed from (see
     /// [`SampledOf::natural_scale`]): `pi` for an angle, the mechanism's largest length for a
-    /// length, 0 for anything else.
+    /// length, 1 for a pure number, 0 for anything else.
     fn kind_scale(&self, c: ColumnIndex) -> f64 {
         match column_kind(&self.k, c) {
             QuantityKind::Angle => std::f64::consts::PI,
             QuantityKind::Length => self.length_scale(),
+            QuantityKind::Dimensionless => 1.0,
             _ => 0.0,
         }
     }
