@@ -107,3 +107,35 @@ fn the_integral_over_a_path_is_over_the_input() {
         assert_close!(*a, *b, 1e-12 * (1.0 + b.abs()), "{a} vs {b}");
     }
 }
+
+/// An extremum at a singular crossing the sweep passed has no gradient, and says so at every
+/// scale and sample count. The change-point four-bar (1, 2, 2.5, 3.5: `a + d = b + c`) has the
+/// joint's `x` at its minimum `d - c` exactly at the crossing `phi = pi` (C on the frame, the
+/// nearest the rocker's circle comes to the crank's pivot), a corner; off `a + d = b + c` the
+/// crossing is gone (limit positions, or no change of mode), so the minimum is not
+/// differentiable in the parameters. The state asked for at the crossing was a pivot band past
+/// it: the minimum came back at `phi` 7e-4 from `pi`, its value 2.2e-7 of the crank above
+/// `d - c`, with a gradient of that point, or as `NearSingular`, as the sample count chose.
+/// The smooth maximum is still given (its gradients are checked on smooth extremes above).
+#[test]
+fn an_extremum_at_a_singular_crossing_has_no_gradient() {
+    use kinloop::analysis::Sampled;
+    use kinloop::{AtSingular, Error, SweepConfig};
+    use kinloop_fixtures::FourBarSens;
+    for s in [1.0, 1e-3, 1e-6] {
+        let m = FourBarSens { a: s, b: 2.0 * s, c: 2.5 * s, d: 3.5 * s };
+        let cfg = SweepConfig::default().with_at_singular(AtSingular::Continue);
+        for n in [64, 73, 100] {
+            let run = Sampled::sweep_with(&m, 0.0, 6.2, n, [0.5, 1.5], cfg).unwrap();
+            let min = run.range(FourBarSens::COL.pc.x).unwrap().min;
+            // The closed form: C at (d - c, 0) at phi = pi.
+            assert!((min.value - s).abs() < 1e-12 * s && (min.x - PI).abs() < 1e-9, "scale {s}, {n}: {min:?}");
+            let r = run.extremum_with_gradient(FourBarSens::COL.pc.x, Extreme::Min);
+            assert!(
+                matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("minimum of `pc.x` lies at a singular crossing")),
+                "scale {s}, {n} samples: {r:?}"
+            );
+            assert!(run.extremum_with_gradient(FourBarSens::COL.pc.x, Extreme::Max).is_ok(), "scale {s}, {n}");
+        }
+    }
+}

@@ -11,7 +11,7 @@
 //! * [`Sampled::integral_with_gradient`]: the trapezoidal integral of a quantity over the
 //!   samples and its exact gradient.
 
-use crate::analysis::column::jet_of_input;
+use crate::analysis::column::{column_name, jet_of_input};
 use crate::analysis::{Column, ColumnIndex, ColumnOf, Extreme, Sampled, SampledOf};
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
@@ -57,6 +57,22 @@ fn one_input<K: Kernel>(k: &K) -> Result<(), Error> {
     }
 }
 
+/// The error for an extremum at a singular crossing the sweep passed (a change point): there
+/// the column has a corner, not a root of its analog, and the crossing itself exists only for
+/// parameters on a manifold (a four-bar's `a + d = b + c`), so that the extremum has no
+/// gradient; and the Jacobian is singular there, so the sensitivities are not defined. (No
+/// state is solved at the crossing: asked for one there, a sweep gives one a pivot band past
+/// it, another point with another value, or none, `NearSingular`.)
+fn at_crossing<K: Kernel>(k: &K, c: ColumnIndex, which: Extreme, x: f64) -> Error {
+    let what = if which == Extreme::Max { "maximum" } else { "minimum" };
+    Error::InvalidArgument(format!(
+        "the {what} of `{}` lies at a singular crossing the sweep passed (`{}` = {x}), a corner of it: \
+         it has no gradient in the parameters there",
+        column_name(k, c),
+        k.input_name(0)
+    ))
+}
+
 impl<K: Kernel> SampledOf<K> {
     /// The one implementation of the extremum with gradients: `sens_at(state, kin, sens)`
     /// writes the kinematics and sensitivities at a state's position into `kin` and `sens`;
@@ -73,6 +89,9 @@ impl<K: Kernel> SampledOf<K> {
         one_input(self.kernel())?;
         let global = self.range(c)?;
         let at = if which == Extreme::Max { global.max } else { global.min };
+        if self.is_crossing(at.x) {
+            return Err(at_crossing(self.kernel(), c, which, at.x));
+        }
         let interior = global.extremes.iter().any(|e| e.at.x == at.x);
         let state = self.at(at.x)?;
         let mut kin = state.clone();
@@ -179,7 +198,10 @@ where
     /// are solved with the sweep configuration's Newton settings.
     ///
     /// An extremum at an end of the range (where the analog does not vanish) is returned at the
-    /// end with `x_grad = 0` and `grad = dq/dp` there.
+    /// end with `x_grad = 0` and `grad = dq/dp` there. An extremum at a singular crossing the
+    /// sweep passed ([`AtSingular::Continue`](crate::AtSingular::Continue), a change point) is
+    /// an [`Error::InvalidArgument`]: it is a corner there, which moves or vanishes as the
+    /// parameters do, and the sensitivities are singular.
     ///
     /// ```ignore
     /// let turn = m.sampled(0.0, TAU, 73, &m.guess(0.0))?;

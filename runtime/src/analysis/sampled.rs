@@ -475,6 +475,12 @@ impl<K: Kernel> SampledOf<K> {
         self.at(s).map(|st| jet_along(c, &st, s, self.line.dir.as_ref()))
     }
 
+    /// Whether the path parameter `s` is that of a singular crossing the sweep passed (where
+    /// [`SampledOf::range`] puts an extreme reached at the crossing itself).
+    pub(crate) fn is_crossing(&self, s: f64) -> bool {
+        self.crossings.iter().any(|c| self.line.param(c.x.as_ref()) == s)
+    }
+
     /// The state at any path parameter `s` of the range (the input for one input), on the
     /// sweep's branch.
     pub fn at(&self, s: f64) -> Result<KinOf<K>, Error> {
