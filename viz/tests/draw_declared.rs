@@ -202,6 +202,38 @@ fn joints_that_coincide_only_numerically_are_two_joints_and_points_of_one_sum_on
     assert!(notes.contains("points `b` and `pin` are one joint"), "{notes}");
 }
 
+kinloop::mechanism! {
+    /// The slider-crank of [`TwicePinned`] with its frame at `(ox, oy)`: `t` is the crank pin
+    /// a turn further round (the same point, another sum), `u` the pin turned on by `g` rad (a
+    /// point `r g` from it, another joint however close).
+    pub struct PinnedAway {
+        params ox = 1e6, oy = -2e6, r = 1.0, l = 3.0, e = 0.2, g = 1e-5;
+        input phi;
+        unknowns psi = 3, x = 4;
+        loop oabo: (ox, oy) + r @ phi == (ox + x, oy + e) + l @ psi;
+        point b = (ox, oy) + r @ phi;
+        point t = (ox, oy) + r @ (phi + 2 * pi);
+        point u = (ox, oy) + r @ (phi + g);
+    }
+}
+
+/// The note that two joints coincide is the same wherever the frame puts the mechanism and in
+/// whatever unit of length it is declared: `t` coincides with the pin `b` (exactly, a turn
+/// further round), `u` is `r g` = 1e-5 of the crank from it, 2.5e-6 of the mechanism's size,
+/// far beyond rounding. The note was measured against 1e-9 of the joints' distance from the
+/// origin: two million crank lengths away, `u` "coincided" with `b` (1e-5 below 2e-3).
+#[test]
+fn joints_coincide_relative_to_the_mechanism_not_to_the_origin() {
+    for (at, unit) in [(0.0, 1.0), (1.0, 1.0), (1.0, 1e-6), (1.0, 1e6), (1e2, 1e-3)] {
+        let m =
+            PinnedAway { ox: 1e6 * at * unit, oy: -2e6 * at * unit, r: unit, l: 3.0 * unit, e: 0.2 * unit, g: 1e-5 };
+        let notes = m.drawing().notes().join("\n");
+        let ox = m.ox;
+        assert!(notes.contains("`b` and `t` coincide"), "frame at {ox}, unit {unit}: {notes}");
+        assert!(!notes.contains("`u`"), "frame at {ox}, unit {unit}: {notes}");
+    }
+}
+
 /// `m`'s default drawing animated over a sweep from 0 to `to`: no note, well-formed, finite; and
 /// at three poses of the sweep, every point the declaration names is drawn where its state puts
 /// it (a joint circle, or a frame pivot for a fixed point, at the pixel the documented window

@@ -395,14 +395,19 @@ impl From<DefaultDrawing> for Drawing {
 
 /// Joints at the same place at the reference state though the macro could not prove them one
 /// (their sums differ symbolically): said in a note, drawn as two, since a coincidence at one
-/// state may be a chance one. Within 1e-9 of the mechanism's extent, rounding of two sums of a
-/// few vectors apart.
+/// state may be a chance one. Within 1e-9 of the mechanism's size (see [`mechanism_size`]), as far
+/// apart as rounding leaves two sums of a few vectors, plus the rounding of the coordinates
+/// themselves (16 ulps of the farther joint's distance from the origin): a mechanism translated
+/// far from the origin or drawn in any unit of length gets the same notes, where a tolerance
+/// of 1e-9 of the distance from the origin called joints a thousandth of a link apart one.
 fn coincident(d: &Description, at: &[[f64; 2]]) -> Vec<String> {
-    let extent = at.iter().fold(0.0f64, |e, p| e.max(p[0].abs()).max(p[1].abs()));
+    let size = mechanism_size(d, at);
+    let magnitude = |p: [f64; 2]| p[0].abs().max(p[1].abs());
     let mut notes = Vec::new();
     for i in 0..at.len() {
         for j in i + 1..at.len() {
-            if (at[i][0] - at[j][0]).hypot(at[i][1] - at[j][1]) <= 1e-9 * extent {
+            let rounding = 16.0 * f64::EPSILON * magnitude(at[i]).max(magnitude(at[j]));
+            if (at[i][0] - at[j][0]).hypot(at[i][1] - at[j][1]) <= 1e-9 * size + rounding {
                 notes.push(format!(
                     "joints `{}` and `{}` coincide at inputs 0 but are different sums of the declared vectors: \
                      drawn as two joints",
@@ -412,6 +417,31 @@ fn coincident(d: &Description, at: &[[f64; 2]]) -> Vec<String> {
         }
     }
     notes
+}
+
+/// The size of the moving mechanism: the larger side of the box around its moving joints, and
+/// at least its longest link (all joints' box if it has neither). Measured between joints, not
+/// from the origin: the frame's constant vectors, and a slider's guide from the origin, may
+/// place the mechanism anywhere.
+fn mechanism_size(d: &Description, at: &[[f64; 2]]) -> f64 {
+    let side = |points: &mut dyn Iterator<Item = &[f64; 2]>| {
+        let (lo, hi) = points.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
+            ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
+        });
+        let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        if side.is_finite() { side } else { 0.0 }
+    };
+    let moving = side(&mut at.iter().zip(&d.joints).filter(|(_, j)| !j.ground).map(|(p, _)| p));
+    let link = d
+        .segments
+        .iter()
+        .filter(|s| s.kind == SegmentKind::Link)
+        .filter_map(|s| Some((at.get(s.from)?, at.get(s.to)?)))
+        .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+        .filter(|l| l.is_finite())
+        .fold(0.0, f64::max);
+    let size = moving.max(link);
+    if size > 0.0 { size } else { side(&mut at.iter()) }
 }
 
 /// `joints` ordered by their angle about their centre in `at`.
