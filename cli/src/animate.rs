@@ -295,7 +295,11 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     let unreached = grid.cells.iter().filter(|c| c.is_none()).count();
     if unreached > 0 {
         let (total, are) = (grid.cells.len(), if unreached == 1 { "is" } else { "are" });
-        eprintln!("note: {unreached} of {} {are} not reached from the first (no assembly there)", Count(total, "cell"));
+        eprintln!(
+            "note: {unreached} of {} {are} not reached from the first on its assembly mode (no assembly there, \
+             or a limit or singular position on the way)",
+            Count(total, "cell")
+        );
     }
     let drawing = noted_drawing(model);
     let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {

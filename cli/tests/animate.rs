@@ -286,7 +286,7 @@ fn a_grid_page_of_two_inputs_is_the_librarys() {
 
 /// `--grid` over a range no sweep follows is a usage error naming the input, whether a sweep
 /// between two cells could follow it (a wide range: each cell a sweep of up to a million turns)
-/// or not (each cell read as unreachable, "no assembly there").
+/// or not (each cell read as unreachable).
 #[test]
 fn a_grid_over_a_range_no_sweep_follows_is_a_usage_error() {
     let path = out("five_bar_far.html");

@@ -409,7 +409,7 @@ kinloop::mechanism! {
 /// several cells; the joints drawn there are the closed-form ones (the links' circles meet
 /// left of A->C: one assembly mode carried over the whole grid), the readouts show both
 /// inputs and p.y, and a cell where the pins are farther apart than `b + c` (closed form) says
-/// "cannot be assembled here" with the mechanism hidden and no number for p.y.
+/// "not reached on this assembly mode" with the mechanism hidden and no number for p.y.
 #[test]
 fn a_grid_of_two_inputs_has_a_slider_each_and_marks_what_cannot_be_assembled() {
     use kinloop::Mechanism;
@@ -513,7 +513,7 @@ fn a_grid_of_two_inputs_has_a_slider_each_and_marks_what_cannot_be_assembled() {
         let status = at.iter().find(|l| l.what == "status").unwrap().get("text");
         if grid.cells[c].is_none() {
             assert_eq!(state.get("reachable"), "false");
-            assert_eq!(status, "cannot be assembled here");
+            assert_eq!(status, "not reached on this assembly mode");
             assert_eq!(text(2), "\u{2013}", "no number where there is no mechanism");
             assert!(!at.iter().any(|l| l.what == "joint"));
             // The browser draws the frame's two pivots and nothing else of the mechanism.

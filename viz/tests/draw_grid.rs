@@ -235,3 +235,38 @@ fn hand_made_grids_without_cells_are_errors() {
     none.cells.iter_mut().for_each(|c| *c = None);
     assert!(page(&none).is_ok(), "no cell reached");
 }
+
+kinloop::mechanism! {
+    /// A five-bar whose links are as long as its cranks: where the cranks' pins coincide (`th1 =
+    /// 0`, `th2 = pi`) the links' circles are one, and the mechanism, assembled, is singular.
+    pub struct PinsMeet {
+        params a = 1.0, b = 1.0, c = 1.0, d = 1.0, e = 2.0;
+        inputs th1, th2;
+        unknowns al = 1.2, be = 2.0;
+        loop l: a @ th1 + b @ al == (e, 0) + d @ th2 + c @ be;
+        point p = a @ th1 + b @ al;
+    }
+}
+
+/// A cell the grid does not reach is not said to be one where the mechanism cannot be
+/// assembled: the five-bar's cell where the cranks' pins coincide is unreached (singular: a
+/// sweep stops there), and the closed form assembles it (the pins `1.2e-16` apart, well within
+/// `b + c = 2` and beyond `|b - c| = 0`: the links' circles meet). The page said "cannot be
+/// assembled here"; it says the cell was not reached.
+#[test]
+fn an_unreached_cell_that_assembles_is_not_said_to_be_unassemblable() {
+    let m = PinsMeet::default();
+    let pi = std::f64::consts::PI;
+    let (from, to) = ([-0.4, pi - 0.4], [0.4, pi + 0.4]);
+    let grid = GridMotion::record(&m, from, to, [9, 9], m.guess_flat(&from)).unwrap();
+    let unreached: Vec<usize> = (0..81).filter(|&c| grid.cells[c].is_none()).collect();
+    let centre = grid.cell(&[4, 4]).unwrap();
+    assert_eq!(unreached, [centre], "only the cell where the pins meet");
+    let (th1, th2) = (grid.axes[0][4], grid.axes[1][4]);
+    let (pa, pc) = ([m.a * th1.cos(), m.a * th1.sin()], [m.e + m.d * th2.cos(), m.d * th2.sin()]);
+    let apart = (pc[0] - pa[0]).hypot(pc[1] - pa[1]);
+    assert!(apart < 1e-15 && meet_left(pa, m.b, pc, m.c).is_some(), "the closed form assembles it: {apart}");
+    let page = html_grid(&m, &m.drawing().into_drawing(), &grid, &HtmlConfig::new("pins")).unwrap();
+    assert!(!page.contains("cannot be assembled here"), "an unreached cell is said not to assemble");
+    assert!(page.contains("not reached on this assembly mode"));
+}

@@ -24,8 +24,10 @@ pub struct GridMotion {
     pub motion: Motion,
     /// The input values along each axis (`count` values evenly spaced from `from` to `to`).
     pub axes: Vec<Vec<f64>>,
-    /// For every cell, the index of its pose in `motion.poses`, or `None` where the mechanism
-    /// cannot be assembled (on the assembly mode carried from the first cell).
+    /// For every cell, the index of its pose in `motion.poses`, or `None` where no sweep from a
+    /// reached neighbour reached it on the assembly mode carried from the first cell: the
+    /// mechanism cannot be assembled there, or a limit position or a singular position lies
+    /// on the way, or at the cell itself (see [`GridMotion::record`]).
     pub cells: Vec<Option<usize>>,
 }
 
@@ -53,7 +55,11 @@ impl GridMotion {
     /// two (breadth first, in cell order). A sweep that meets a limit position or cannot be
     /// continued passes nothing, and a cell no neighbour reaches is marked unreachable: `None`
     /// in [`GridMotion::cells`]. Cells beyond a limit position on one line are so reached
-    /// around it where the mechanism can be assembled there on the same mode.
+    /// around it where the mechanism can be assembled there on the same mode. An unreachable
+    /// cell is not one where the mechanism cannot be assembled: it may be one where it can, but
+    /// every way to it from a reached neighbour passes a limit position or a singular position
+    /// (where a sweep stops), or where it is singular itself (a five-bar whose cranks' pins
+    /// coincide, its links free to turn about them).
     ///
     /// ```
     /// use kinloop::Mechanism;

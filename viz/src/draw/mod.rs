@@ -15,8 +15,8 @@
 //!   its text drawn with a built-in stroke font;
 //! * [`html()`]: an interactive page (slider, play/pause, live readouts, linked charts);
 //!   [`html_grid`] for several inputs: one slider per input over a [`GridMotion`], a grid of
-//!   the inputs swept carrying one assembly mode, with "cannot be assembled here" where it is
-//!   not reached.
+//!   the inputs swept carrying one assembly mode, with "not reached on this assembly mode"
+//!   where it is not reached.
 //!
 //! A drawing's notes ([`Drawing::note`]; the default drawing's say what the declaration leaves
 //! ambiguous) are written under the picture by every SVG and page. [`candidates()`] draws the

@@ -285,7 +285,7 @@ pub(crate) fn figure(
         );
     }
     let f = &fr.frames[first];
-    // The live mechanism in one group: a grid's page hides it where it cannot be assembled.
+    // The live mechanism in one group: a grid's page hides it where the grid did not reach.
     s.push_str(r#"<g id="kl-mechanism">"#);
     items(&mut s, style, &fr.slots, f, &Pen { ink: &style.ink, fill: &style.fill, ghost: false }, Some(joints));
     for (k, name) in traces.iter().enumerate() {

@@ -21,8 +21,8 @@
 //! With several inputs the motion is either a sweep along a straight path in input space
 //! ([`html`]: one slider moves along that path and every input has its readout), or a grid of
 //! the inputs ([`html_grid`] over a [`GridMotion`]: one slider per input, the mechanism at
-//! the sliders' cell, "cannot be assembled here" where the grid could not be assembled on
-//! the assembly mode carried from its first cell).
+//! the sliders' cell, "not reached on this assembly mode" where no sweep of the grid reached
+//! a cell on the assembly mode carried from its first cell).
 //!
 //! The page is deterministic (the same inputs give the same bytes: no time stamp, no random
 //! identifier) and holds no NaN or infinite number: a non-finite value is an [`HtmlError`].
@@ -223,8 +223,11 @@ pub(crate) fn html_marked<D: Drawable + ?Sized>(
 
 /// An interactive page of `drawing` over a grid of the inputs of mechanism `m` (recorded with
 /// [`GridMotion::record`]): one slider per input, a readout of every input, the mechanism at
-/// the sliders' cell; where the grid could not be assembled the mechanism is hidden (its frame
-/// pivots stay), the other readouts show a dash and the page says "cannot be assembled here".
+/// the sliders' cell; where the grid did not reach a cell the mechanism is hidden (its frame
+/// pivots stay), the other readouts show a dash and the page says "not reached on this assembly
+/// mode": the mechanism cannot be assembled there, or it can but a limit position or a singular
+/// position lies on the way from every reached neighbour, or at the cell itself (see
+/// [`GridMotion::record`]); the grid does not tell these apart.
 /// The traced
 /// points' paths are drawn along every row of reachable cells. Play moves the first input
 /// along its row. The readouts have no charts (a chart against one input would hold for one

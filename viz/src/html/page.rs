@@ -45,7 +45,7 @@ pub(crate) struct Parts<'a> {
 pub(crate) struct GridPart {
     /// Cells along each input.
     pub counts: Vec<usize>,
-    /// For every cell (the first input fastest), its frame, or -1 where it cannot be assembled.
+    /// For every cell (the first input fastest), its frame, or -1 where the grid did not reach it.
     pub cells: Vec<i64>,
     /// The inputs' names, labelling the sliders.
     pub inputs: Vec<String>,
@@ -212,7 +212,7 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
     }
     let about = match &p.grid {
         Some(g) => format!(
-            "{n} of {} cells of a grid of the inputs ({}), computed by kinloop: from the first cell, each cell reached by a branch-safe sweep from a neighbour already solved, so that one assembly mode is carried throughout; where the mechanism cannot be assembled on it, the page says so. Drag the sliders or use the arrow keys.",
+            "{n} of {} cells of a grid of the inputs ({}), computed by kinloop: from the first cell, each cell reached by a branch-safe sweep from a neighbour already solved, so that one assembly mode is carried throughout; where no sweep reached a cell on it (the mechanism cannot be assembled there, or a limit or singular position lies on the way), the page says so. Drag the sliders or use the arrow keys.",
             g.cells.len(),
             g.counts.iter().map(usize::to_string).collect::<Vec<_>>().join(" x "),
         ),

@@ -134,7 +134,7 @@ pub(crate) const SCRIPT: &str = r#"
     } else {
       mech.classList.add('kl-unreachable');
       values.forEach(function (el, k) { if (k >= ni) { el.textContent = '\u2013'; } });
-      status.textContent = 'cannot be assembled here';
+      status.textContent = 'not reached on this assembly mode';
     }
     svg.setAttribute('data-cell', String(c));
     svg.setAttribute('data-reachable', f >= 0 ? 'true' : 'false');
