@@ -310,3 +310,44 @@ fn a_column_constant_up_to_rounding_reads_and_charts_as_constant() {
     let offset: f64 = offset.text().unwrap().parse().unwrap();
     assert!((offset - 1000.0).abs() < 1e-8, "{offset}");
 }
+
+kinloop::mechanism! {
+    /// A centred slider-crank with its pin `c` as a point and the pin's height over the rod as
+    /// a ratio: both zero in exact arithmetic (the pin stays on the slider's line), rounding
+    /// alone when computed.
+    pub struct CentredPin {
+        params r, l;
+        input phi;
+        unknowns psi = 0, x = -l;
+        loop oabo: r @ phi == (x, 0) + l @ psi;
+        point c = r @ phi - l @ psi;
+        output h = (r * sin(phi) - l * sin(psi)) / l;
+    }
+}
+
+/// A length or a pure number that is zero in exact arithmetic reads one zero (`0.0000`) at
+/// every frame, at every scale: its rounding is judged against what it is computed from (the
+/// mechanism's largest length, the size one of a pure number), as an angle's against a turn.
+/// Judged against its own size, rounding, the pin's height read values such as `1.1102e-16`
+/// that changed from frame to frame, charted as a curve.
+#[test]
+fn a_length_or_ratio_zero_up_to_rounding_reads_zero() {
+    use kinloop_viz::draw::Draw;
+    for scale in SCALES {
+        let m = CentredPin { r: scale, l: 3.0 * scale };
+        let motion = Motion::record(&m, m.sweep(0.1, 0.1 + TAU, POSES, &m.guess(0.1)).unwrap()).unwrap();
+        let config = HtmlConfig::new("pin").show("c.y").show("h").show("c.x");
+        let p = html(&m, &m.drawing().into_drawing(), &motion, &config).unwrap();
+        for (label, _, values) in rust_texts(&p) {
+            match label.as_str() {
+                "c.y" | "h" => assert!(
+                    values.iter().all(|v| v == &values[0] && v.parse::<f64>() == Ok(0.0)),
+                    "scale {scale}, {label}: {values:?}"
+                ),
+                // The pin's x, the slider's position: it moves, and reads so.
+                "c.x" => assert!(values.iter().any(|v| v != &values[0]), "scale {scale}: {values:?}"),
+                _ => {}
+            }
+        }
+    }
+}

@@ -35,9 +35,11 @@
 //! digits of their span), written as the charts' axes are labelled: with decimals for ordinary magnitudes (a largest value from
 //! about 1e-4 to 1e5: `"-0.0123"`), with a power of ten beyond (`"-5.661e-7"`, `"1.5896e9"`;
 //! zero `"0"`), never as a negative zero. A readout whose values spread by no more than f64
-//! rounding (a thousand ulps of their magnitude, at least a turn for an angle: a length
-//! computed through the loop, an angle that is zero up to rounding) is shown as constant: one
-//! value, to five significant digits, and a flat chart. A chart's axis whose labels would be
+//! rounding (a thousand ulps of their magnitude, and at least of what its kind is computed
+//! from: a turn for an angle, the mechanism's largest length for a length, 1 for a pure number:
+//! a length computed through the loop, an angle that is zero up to rounding) is shown as
+//! constant: one value, to five significant digits, and a flat chart; 0 where that value is
+//! within the same rounding of zero (a centred slider's pin height). A chart's axis whose labels would be
 //! too wide (values far from zero that vary little) is labelled by differences from the offset
 //! written above it (`+999.999999996`). The drawing's
 //! scale (`data-scale`, pixels per unit) and the pixel of the origin (`data-origin`) are

@@ -97,17 +97,45 @@ fn column(c: &Columns, name: &str, unit: &str) -> Result<(Source, Kind), HtmlErr
 
 /// `shown`, the values of a readout of kind `kind` (shown units), made one value (the middle of
 /// their range) when they spread by no more than rounding: [`NOISE`] of their magnitude, the
-/// largest value's, and at least a turn for an angle: an angle is computed to the ulps of the
-/// angles it is computed from, whatever its own size (an angle that is zero up to rounding
-/// reads 1e-14 degrees).
-fn flattened(kind: &Kind, shown: &mut [f64]) {
+/// largest value's, and at least `floor`, the size of what a value of the kind is computed from
+/// ([`rounding_floor`]): an angle is computed to the ulps of the angles it is computed from,
+/// whatever its own size (an angle that is zero up to rounding reads 1e-14 degrees), a length
+/// to the ulps of the mechanism's lengths. That one value is 0 where it is within rounding of
+/// `floor` of zero: a length or a ratio zero in exact arithmetic (a centred slider's pin on its
+/// line) read its rounding, `1.1102e-16` at one frame and `0` at the next.
+fn flattened(shown: &mut [f64], floor: f64) {
     let (lo, hi) = shown.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
-    let turn = if kind.is_angle() { 360.0 } else { 0.0 };
-    let magnitude = lo.abs().max(hi.abs()).max(turn);
+    let magnitude = lo.abs().max(hi.abs()).max(floor);
     // Halves: no overflow for any finite range.
     if hi >= lo && hi / 2.0 - lo / 2.0 <= NOISE / 2.0 * magnitude {
-        shown.fill(lo / 2.0 + hi / 2.0);
+        let middle = lo / 2.0 + hi / 2.0;
+        shown.fill(if middle.abs() <= NOISE * floor { 0.0 } else { middle });
     }
+}
+
+/// The size of what a readout of kind `kind` is computed from, in shown units, against which
+/// its rounding is judged ([`flattened`]): a turn for an angle, the mechanism's largest length
+/// over the motion (`length`) for a length, 1 for a pure number (a ratio, a sine), and 0 for
+/// anything else (its own size alone).
+fn rounding_floor(kind: &Kind, length: f64) -> f64 {
+    match kind {
+        Kind::Angle => 360.0,
+        Kind::Length(_) => length,
+        Kind::Dimensionless => 1.0,
+        _ => 0.0,
+    }
+}
+
+/// The largest magnitude of any length column (input, unknown or output) over the motion's
+/// poses: the mechanism's size in its unit of length (0 without length columns).
+fn length_scale(c: &Columns, motion: &Motion) -> f64 {
+    let is_length = |k: &QuantityKind| *k == QuantityKind::Length;
+    let pick = |kinds: &[QuantityKind], values: &[f64]| {
+        kinds.iter().zip(values).filter(|(k, v)| is_length(k) && v.is_finite()).fold(0.0f64, |m, (_, v)| m.max(v.abs()))
+    };
+    motion.poses.iter().fold(0.0, |m, p| {
+        m.max(pick(&c.input_kinds, &p.x)).max(pick(&c.unknown_kinds, &p.q)).max(pick(&c.output_kinds, &p.out))
+    })
 }
 
 /// The inputs' readouts (each replaced by a readout of the config naming it), then the
@@ -138,6 +166,7 @@ pub(crate) fn channels(
     list.extend(config.readouts.iter().filter(|r| names_input(r).is_none()).cloned());
     let all: Vec<usize> =
         poses.iter().copied().chain(motion.poses.len()..motion.poses.len() + motion.events.len()).collect();
+    let length = length_scale(c, motion);
     let mut out = Vec::with_capacity(list.len());
     for r in list {
         let (label, kind, get): (String, Kind, Box<dyn Fn(usize) -> f64>) = match &r.value {
@@ -180,7 +209,7 @@ pub(crate) fn channels(
             }
             shown.push(v);
         }
-        flattened(&kind, &mut shown);
+        flattened(&mut shown, rounding_floor(&kind, length));
         let format = format_of(&kind, &shown);
         let mut values: Vec<f64> = shown.into_iter().map(|v| format.rounded(v)).collect();
         let at_events = values.split_off(poses.len());
