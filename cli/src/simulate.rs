@@ -17,11 +17,11 @@
 
 use crate::dynamics::{LOCKED, bad_mass, check_crank, locks};
 use crate::exit::usage;
-use crate::solve::degrees;
+use crate::solve::{degrees, in_units};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
-use kinloop_runtime::{Error, Number, Table};
+use kinloop_runtime::{Error, Number, QuantityKind, Table};
 
 /// The default step budget of the integration (`--max-steps`): a run of at most seconds (the
 /// shipped engine at 150 rad/s takes about 60 steps a turn, a million steps in about four
@@ -75,7 +75,8 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("--max-steps 0 allows no step: give at least 1 (the default is {MAX_STEPS})")));
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
-    let mut table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, req.deg))?;
+    let kinds = model.input_kinds().to_vec();
+    let mut table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, &kinds, req.deg))?;
     // The first row is the start, at time 0: its angle and speed as given, as `solve` writes
     // the inputs given, not their radians times `180/π` (`--start 30 --deg` was written
     // `29.999999999999996`). In radians the same numbers.
@@ -183,8 +184,9 @@ fn config(req: &Request) -> RunConfig {
 /// a step or that needs more steps than `--max-steps`, or a body's mass or inertia made
 /// negative by the parameters,
 /// is a bad argument (a usage error); the rest is the model's (a limit position or a singular
-/// motion reached, a load that is not finite).
-fn failure(name: &str, e: Error, deg: bool) -> Failed {
+/// motion reached, a load that is not finite), its input (of kind `kinds`) and speed written in
+/// degrees with `deg`, as the table writes them.
+fn failure(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> Failed {
     let dynamics = match &e {
         Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
         _ => None,
@@ -221,8 +223,9 @@ fn failure(name: &str, e: Error, deg: bool) -> Failed {
         }
         _ => {}
     }
-    eprintln!("error: {}", crate::solve::named(name, &e));
-    if locks(&e) {
+    let locked = locks(&e);
+    eprintln!("error: {}", crate::solve::named(name, &in_units(e, kinds, deg)));
+    if locked {
         eprintln!("{LOCKED}");
     }
     Failed(exit::SOLVE_FAILED)
@@ -367,6 +370,24 @@ mod tests {
         let rows = Rows::new(3, |k| k as f64, "phi".into(), false, 1.0);
         let table = rows.finish([1.0, 2.0]);
         assert!(table.rows.iter().all(|r| r[1..] == [1.0, 2.0]));
+    }
+
+    /// A singular motion met with `--deg` names the input and its speed in degrees (per time
+    /// unit), as the table writes them: a quarter turn and half a turn per time unit.
+    #[test]
+    fn a_singular_motion_is_written_in_degrees_with_deg() {
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let motion = DynamicsError::SingularMotion {
+            t: 1.0,
+            h: 1e-17,
+            x: vec![FRAC_PI_2],
+            speed: vec![PI],
+            names: vec!["phi".into()],
+        };
+        let text = in_units(Error::from(motion.clone()), &[QuantityKind::Angle], true).to_string();
+        assert!(text.contains("at phi = 90, speed 180 (t = 1)"), "{text}");
+        let text = in_units(Error::from(motion), &[QuantityKind::Angle], false).to_string();
+        assert!(text.contains("at phi = 1.5707963267948966, speed 3.141592653589793 "), "{text}");
     }
 
     /// A spent budget says which options to change and the steps the span needs, no longer

@@ -3,7 +3,8 @@
 use crate::numbers::number;
 use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
-use kinloop_runtime::{Error, EventKind, NewtonConfig, Number, QuantityKind, Table};
+use kinloop_runtime::dynamics::DynamicsError;
+use kinloop_runtime::{Error, EventKind, NewtonConfig, Number, QuantityKind, Source, Table};
 
 /// Solves at every `--at` and writes the table of the states solved to standard output: a
 /// failed one is explained on standard error and left out, the others written (each is solved
@@ -128,8 +129,17 @@ pub fn degrees(v: f64) -> f64 {
 }
 
 /// `e` with the inputs of its location (of kinds `kinds`) in the units written: angles in
-/// degrees where `deg` is set, as they were given and as the table writes them.
+/// degrees where `deg` is set, as they were given and as the table writes them. A dynamics
+/// error (`dynamics`, `simulate`) carries its inputs, and a simulation's speeds, apart from a
+/// location: they are converted too ([`dynamics_in_units`]).
 pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
+    if let (true, Error::Dynamics(source)) = (deg, &e)
+        && let Some(d) = source.downcast_ref::<DynamicsError>()
+    {
+        // Wrapped as it came (not through `From`, which unwraps a kinematic failure and drops
+        // the time it happened at).
+        return Error::Dynamics(Source::new(dynamics_in_units(d.clone(), kinds)));
+    }
     if let (true, Some(at)) = (deg, e.location_mut()) {
         for ((_, v), k) in at.inputs.iter_mut().zip(kinds) {
             if *k == QuantityKind::Angle {
@@ -145,6 +155,33 @@ pub fn in_units(mut e: Error, kinds: &[QuantityKind], deg: bool) -> Error {
         (*apart, *step) = (apart.to_degrees(), step.to_degrees());
     }
     e
+}
+
+/// A dynamics error with the inputs it names (of kinds `kinds`) in degrees where they are
+/// angles, and a simulation's speeds with them (per time unit, the factor is the angle's); a
+/// kinematic failure inside it by [`in_units`]. Without this `--deg` wrote these in radians
+/// beside a table in degrees: a load not finite at the sample of 90 degrees was said to be
+/// at `phi = 1.5707963267948966`.
+fn dynamics_in_units(mut d: DynamicsError, kinds: &[QuantityKind]) -> DynamicsError {
+    let angles = |values: &mut [f64]| {
+        for (v, k) in values.iter_mut().zip(kinds) {
+            if *k == QuantityKind::Angle {
+                *v = degrees(*v);
+            }
+        }
+    };
+    match &mut d {
+        DynamicsError::NonFiniteLoad { x, .. }
+        | DynamicsError::SingularMass { x, .. }
+        | DynamicsError::Overflow { x, .. } => angles(x),
+        DynamicsError::SingularMotion { x, speed, .. } => {
+            angles(x);
+            angles(speed);
+        }
+        DynamicsError::Kinematics { source, .. } => *source = in_units(source.clone(), kinds, true),
+        _ => {}
+    }
+    d
 }
 
 /// A failed solve of the model `name` reported: its error in the units written ([`in_units`]),

@@ -395,3 +395,25 @@ fn the_turn_s_angles_in_degrees_are_the_decimals_from_the_start() {
         }
     }
 }
+
+/// With `--deg` the angle a dynamics error names is in degrees, as the table's and `--start`'s
+/// are: the engine whose brake torque is `sqrt(1 - phi)`, not finite beyond 1 rad, fails at the
+/// first of 8 samples a turn past it, 90 degrees. It was written in radians, `phi =
+/// 1.5707963267948966`, where a kinematic failure's angle was already in degrees.
+#[test]
+fn a_load_not_finite_names_its_angle_in_degrees_with_deg() {
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("engine_sqrt_brake.kl");
+    let brake = "-t_load * (1 + 0.5 * cos(phi))";
+    let text = std::fs::read_to_string(shipped("engine.kl")).expect("the shipped engine");
+    assert!(text.contains(brake), "the shipped engine's brake law changed");
+    std::fs::write(&path, text.replacen(brake, "-t_load * sqrt(1 - phi)", 1)).unwrap();
+    let file = path.to_str().unwrap();
+    let out = kinloop(&["dynamics", file, "--speed", "8594", "--samples", "8", "--deg"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("the load `brake` is not finite (NaN) at phi = 90"), "{err}");
+    // In radians without `--deg`.
+    let out = kinloop(&["dynamics", file, "--speed", "150", "--samples", "8"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("at phi = 1.5707963267948966"), "{err}");
+}

@@ -247,3 +247,41 @@ fn the_start_in_degrees_is_written_as_given() {
         assert!((radians[0][1].to_degrees() - given).abs() <= 4.0 * f64::EPSILON * given.abs(), "{start}");
     }
 }
+
+/// The input angle in a failure's message, `phi = VALUE`.
+fn angle_in(err: &str) -> f64 {
+    let tail = err.split("at phi = ").nth(1).unwrap_or_else(|| panic!("no angle in: {err}"));
+    let value = tail.split([' ', ',', '\n']).next().unwrap_or_default();
+    value.parse().unwrap_or_else(|_| panic!("`{value}` in: {err}"))
+}
+
+/// With `--deg` a failed simulation names the input in degrees, as its table, `--start` and
+/// `--speed` are; it was written in radians. The engine whose crank is longer than its rod
+/// (r = 0.3, l = 0.2, offset e = 0.01) locks where `r sin(phi) = l + e`, at asin(0.7) =
+/// 44.427 degrees (0.7754 rad): the run stops at a trial state there, within the reach of the
+/// last steps, which the speed falling to zero at the limit keeps short (measured: 1e-11 deg).
+/// A brake torque `sqrt(1 - phi)` is not finite past 1 rad = 57.296 degrees, where the run
+/// stops within a step of it (measured: 0.03 deg at 150 rad per time unit). Half a degree
+/// tells either from its value in radians.
+#[test]
+fn a_failure_names_the_input_in_degrees_with_deg() {
+    let engine = shipped("engine.kl");
+    let speed = 150f64.to_degrees().to_string();
+    let args = ["simulate", &engine, "--deg", "--speed", &speed, "--time", "0.01", "--samples", "3"];
+    let out = kinloop(&[&args[..], &["--params", "r=0.3,l=0.2"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let limit = 0.7f64.asin().to_degrees();
+    assert!((angle_in(&err) - limit).abs() < 0.5, "limit at {limit} deg: {err}");
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("engine_sqrt_brake_sim.kl");
+    let brake = "-t_load * (1 + 0.5 * cos(phi))";
+    let text = std::fs::read_to_string(shipped("engine.kl")).expect("the shipped engine");
+    assert!(text.contains(brake), "the shipped engine's brake law changed");
+    std::fs::write(&path, text.replacen(brake, "-t_load * sqrt(1 - phi)", 1)).unwrap();
+    let args = ["simulate", path.to_str().unwrap(), "--deg", "--speed", &speed, "--time", "0.01", "--samples", "3"];
+    let out = kinloop(&args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("the load `brake` is not finite"), "{err}");
+    assert!((angle_in(&err) - 1f64.to_degrees()).abs() < 0.5, "not finite past 57.3 deg: {err}");
+}
