@@ -210,7 +210,12 @@ pub(crate) fn dopri5_judged<const D: usize>(
     // The last accepted step's length (none yet): a longer step is the error control's guess.
     let mut accepted_h = f64::INFINITY;
     for _ in 0..cfg.max_steps {
-        let last = t + h >= t_end;
+        // The step ends the span where it reaches its end or falls short of it by no more than
+        // the time's rounding there: the sliver such a step left (steps of `h_max` summing a few
+        // units in the last place short of a multiple of it, 1.0069999999999997 for 1.007) was
+        // a step below `step_floor`, and a smooth motion was reported singular at its end. The
+        // last step is then longer than the one proposed by at most that rounding.
+        let last = t + h >= t_end - step_floor(t0, t_end);
         if last {
             h = t_end - t;
         }
