@@ -446,3 +446,25 @@ fn an_input_the_loops_determine_is_offered_to_become_an_unknown() {
     let e = errors("pub struct S { params r, l, x; input phi; unknowns psi; loop c: r @ phi == (x, 0) + l @ psi; }");
     assert!(e[0].contains("or turn 1 parameter it uses into an unknown"), "{e:#?}");
 }
+
+/// A centre of mass or a force's point has lengths for coordinates: an angle unknown there put
+/// the body at so many radians, its mass counted in mass rad^2 beside the others' mass
+/// length^2, and the reduced inertia changed with the unit of length, without a word. The
+/// slider's own unknown and constants remain coordinates.
+#[test]
+fn an_angle_unknown_is_no_coordinate_of_a_body_or_a_force() {
+    let engine = |body: &str, force: &str| {
+        format!(
+            "pub struct E {{ params r, l, e, m; input phi; unknowns beta, x;
+             loop c: r @ phi + l @ beta == (x, e);
+             body piston: mass m, com {body}; force gas at {force} = (1, 0); }}"
+        )
+    };
+    assert_eq!(errors(&engine("(x, e)", "(x, e)")), Vec::<String>::new());
+    let e = errors(&engine("(beta, e)", "(x, e)"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("a centre of mass is a point of lengths, but `beta` is an angle"), "{e:#?}");
+    let e = errors(&engine("(x, e)", "(e, beta)"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("the point a force acts at is a point of lengths, but `beta` is an angle"), "{e:#?}");
+}

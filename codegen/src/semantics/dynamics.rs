@@ -248,7 +248,10 @@ impl Pending {
         // The kinematics' trigonometric arguments, found once (a walk of the whole graph, not
         // taken for a mechanism that names no angle), and one verdict per angle however many
         // bodies and torques name it.
-        let arguments = if self.angles.is_empty() {
+        let points = self.bodies.iter().map(|b| &b.com).chain(self.forces.iter().map(|f| &f.1));
+        let unknown_coords =
+            points.flat_map(|p| [p.x, p.y]).any(|n| matches!(lw.graph.op(n), Op::Leaf(Leaf::Unknown(_))));
+        let arguments = if self.angles.is_empty() && !unknown_coords {
             Vec::new()
         } else {
             let kinematics: Vec<NodeId> = residuals.iter().chain(outputs).copied().collect();
@@ -274,10 +277,28 @@ impl Pending {
                 ));
             }
         }
-        let coords = |lw: &mut Lowerer, p: &PendingPoint, what: &str| -> Option<[CoordModel; 2]> {
+        let mut coords = |lw: &mut Lowerer, p: &PendingPoint, what: &str| -> Option<[CoordModel; 2]> {
             let c = [coord(&lw.graph, &columns, p.x), coord(&lw.graph, &columns, p.y)];
             if let [Some(x), Some(y)] = c {
-                return Some([x, y]);
+                // A coordinate that is an angle unknown puts the point at so many radians: a
+                // body's mass there counted in mass rad^2 beside the others' mass length^2, and
+                // results that changed with the unit of length, without a word.
+                let angle = [x, y].into_iter().find_map(|c| match c {
+                    CoordModel::Unknown(u) => {
+                        let leaf = Leaf::Unknown(u as u16);
+                        let verdict =
+                            *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
+                        verdict.then_some(leaf)
+                    }
+                    _ => None,
+                });
+                let Some(leaf) = angle else { return Some([x, y]) };
+                let name = leaf_name(lw, leaf).unwrap_or_default();
+                lw.errors.push(p.range.error(format!(
+                    "{what} is a point of lengths, but `{name}` is an angle: write a length for that coordinate \
+                     (a slider's unknown, a constant, or a declared point)"
+                )));
+                return None;
             }
             // The mass model reads no input (the runtime's `Coord` has no such coordinate): a
             // point that moves with one is declared, and read as the output it then is.
@@ -363,8 +384,17 @@ fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
 
 /// The name of the input `n` is, if it is one.
 fn input_name(lw: &Lowerer, n: NodeId) -> Option<String> {
-    let Op::Leaf(Leaf::Input(i)) = lw.graph.op(n) else { return None };
-    lw.scope.symbols.iter().find(|(_, (s, _))| matches!(s, Symbol::Input(j) if *j == i)).map(|(k, _)| k.clone())
+    let Op::Leaf(leaf @ Leaf::Input(_)) = lw.graph.op(n) else { return None };
+    leaf_name(lw, leaf)
+}
+
+/// The name of the input or unknown `leaf`.
+fn leaf_name(lw: &Lowerer, leaf: Leaf) -> Option<String> {
+    let named = |s: &Symbol| match (leaf, s) {
+        (Leaf::Input(i), Symbol::Input(j)) | (Leaf::Unknown(i), Symbol::Unknown(j)) => *j == i,
+        _ => false,
+    };
+    lw.scope.symbols.iter().find(|(_, (s, _))| named(s)).map(|(k, _)| k.clone())
 }
 
 fn depends_on_state(g: &Graph, roots: &[NodeId]) -> bool {
