@@ -58,8 +58,12 @@ impl ColumnKey for &String {
 /// assert!(String::from_utf8(csv.clone()).unwrap().starts_with("phi [rad],x_c [mm],d(x_c)/d(phi) [mm/rad]\n"));
 /// assert_eq!(Table::read_csv(&csv[..]).unwrap(), s);
 /// ```
+///
+/// With the feature `serde` a table reads back only with every row as long as `columns` and no
+/// more units than columns (an error says which row or how many units), as [`Table::push`]
+/// keeps it.
 #[derive(Clone, Debug, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(try_from = "TableRepr"))]
 pub struct Table {
     /// Column names.
     pub columns: Vec<String>,
@@ -67,8 +71,34 @@ pub struct Table {
     pub rows: Vec<Vec<f64>>,
     /// Unit of each column (`""` for none; a missing entry is none), written into the CSV
     /// header as `name [unit]`.
-    #[cfg_attr(feature = "serde", serde(default))]
     pub units: Vec<String>,
+}
+
+/// A [`Table`] as read by serde, before its shape is checked (its `TryFrom`): a ragged
+/// row read unchecked would be missing values, NaN in [`Table::column`], with no error.
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+struct TableRepr {
+    columns: Vec<String>,
+    rows: Vec<Vec<f64>>,
+    // Tables written before the units were kept have none.
+    #[serde(default)]
+    units: Vec<String>,
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<TableRepr> for Table {
+    type Error = String;
+    fn try_from(t: TableRepr) -> Result<Table, String> {
+        let width = t.columns.len();
+        if let Some((k, row)) = t.rows.iter().enumerate().find(|(_, r)| r.len() != width) {
+            return Err(format!("row {} of the table has {} values for {width} columns", k + 1, row.len()));
+        }
+        if t.units.len() > width {
+            return Err(format!("the table has {} units for {width} columns", t.units.len()));
+        }
+        Ok(Table { columns: t.columns, rows: t.rows, units: t.units })
+    }
 }
 
 impl Table {

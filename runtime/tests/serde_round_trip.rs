@@ -54,3 +54,24 @@ fn events_round_trip_without_their_static_block() {
     assert_eq!(round_trip(&e), e);
     assert_eq!(round_trip(&EventKind::SingularCrossing), EventKind::SingularCrossing);
 }
+
+/// A table read from JSON has the shape [`Table::push`] keeps: a row of another length than
+/// the columns, or more units than columns, is an error saying so. Read unchecked, the
+/// missing value of a short row was NaN in `Table::column`, without an error.
+#[test]
+fn a_table_of_the_wrong_shape_is_refused_saying_where() {
+    let short = r#"{"columns":["phi","x"],"rows":[[0.5,1.0],[0.75]],"units":["rad","mm"]}"#;
+    let err = serde_json::from_str::<Table>(short).unwrap_err().to_string();
+    assert!(err.contains("row 2 of the table has 1 values for 2 columns"), "{err}");
+    let long = r#"{"columns":["phi"],"rows":[[0.5,1.0]]}"#;
+    let err = serde_json::from_str::<Table>(long).unwrap_err().to_string();
+    assert!(err.contains("row 1 of the table has 2 values for 1 columns"), "{err}");
+    let units = r#"{"columns":["phi"],"rows":[[0.5]],"units":["rad","mm"]}"#;
+    let err = serde_json::from_str::<Table>(units).unwrap_err().to_string();
+    assert!(err.contains("the table has 2 units for 1 columns"), "{err}");
+    // Well formed, with fewer units than columns (a missing one is none) or none at all.
+    let fewer: Table = serde_json::from_str(r#"{"columns":["phi","x"],"rows":[[0.5,1.0]],"units":["rad"]}"#).unwrap();
+    assert_eq!((fewer.unit("phi"), fewer.unit("x"), fewer.column("x")), (Some("rad"), Some(""), Some(vec![1.0])));
+    let none: Table = serde_json::from_str(r#"{"columns":["phi"],"rows":[]}"#).unwrap();
+    assert_eq!(none, Table { columns: vec!["phi".into()], rows: Vec::new(), units: Vec::new() });
+}
