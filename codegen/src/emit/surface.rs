@@ -185,7 +185,7 @@ pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], k
     let docs = fields.iter().map(|f| f.doc(kind));
     let bind: Vec<Ident> = (0..fields.len()).map(|k| Ident::new(&format!("f{k}"), Span::call_site())).collect();
     // A struct without fields still mentions `T`.
-    let marker = fields.is_empty().then(|| quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,));
+    let marker = fields.is_empty().then(marker);
     let derive = derives(quote!(Clone, Copy, Debug, Default, PartialEq), quote!());
     let doc_line = format!(" {doc}");
     quote! {
@@ -198,6 +198,14 @@ pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], k
         }
         #rt::array_conversions!(#ty, #n; #(#names(#bind)),*);
     }
+}
+
+/// The field of a generated struct without declared ones (no outputs, no unknowns), which still
+/// mentions its element type `T`. Skipped by serde: the struct is `{}`, as it reads, not
+/// `{"__marker":null}`, and `{}` reads back (without the skip it was "missing field
+/// `__marker`", a field the user does not know of).
+fn marker() -> TokenStream {
+    quote!(#[doc(hidden)] #[serde(skip)] pub __marker: ::core::marker::PhantomData<T>,)
 }
 
 /// Outputs: points are `Vec2<T>`, scalars `T`; flat order is x, y per point then scalars.
@@ -218,7 +226,7 @@ fn outputs_struct(s: &Surface, t: &Types) -> TokenStream {
         flat += 1;
     }
     let conversions = if flat == 0 {
-        fields.push(quote!(#[doc(hidden)] pub __marker: ::core::marker::PhantomData<T>,));
+        fields.push(marker());
         quote!(#rt::array_conversions!(#ty, 0;);)
     } else {
         let nol = lit(flat);
