@@ -136,9 +136,44 @@ impl Table {
         Some(self.rows.iter().map(|r| r.get(k).copied().unwrap_or(f64::NAN)).collect())
     }
 
-    /// A column's values converted from radians to degrees (for an angle column).
+    /// A column's values with angles in degrees instead of radians, by the column's unit: an
+    /// angle (`rad`) times `180/pi`; an analog by the units of its quantity and inputs
+    /// (`d(x_c)/d(phi)` from `mm/rad` to `mm/deg`, divided by `180/pi`; `d(beta)/d(phi)`,
+    /// `rad/rad`, unchanged; `d2(x_c)/d(phi)^2` divided by its square); a column without angles
+    /// (a length) unchanged. Where the table does not know a unit the column needs (a table made
+    /// by [`Table::new`] without [`Table::with_units`], a quantity of a kind not inferred) the
+    /// column is taken to be an angle, as you ask.
+    ///
+    /// ```
+    /// use kinloop_runtime::Table;
+    /// let mut t = Table::new(vec!["phi".into(), "x_c".into(), "d(x_c)/d(phi)".into()]);
+    /// t.push(vec![std::f64::consts::PI, 2.0, 180.0]);
+    /// let t = t.with_units(&[("phi", "rad"), ("x_c", "mm")]);
+    /// assert_eq!(t.column_deg("phi"), Some(vec![180.0]));
+    /// assert_eq!(t.column_deg("x_c"), Some(vec![2.0]));
+    /// // 180 mm per radian is pi mm per degree.
+    /// assert_eq!(t.column_deg("d(x_c)/d(phi)"), Some(vec![std::f64::consts::PI]));
+    /// ```
     pub fn column_deg(&self, name: impl ColumnKey) -> Option<Vec<f64>> {
-        Some(self.column(name)?.into_iter().map(crate::to_deg).collect())
+        let name = name.column_name();
+        let values = self.column(name)?;
+        // Unknown: the caller's word that the column is an angle.
+        let power = self.radian_power(name).unwrap_or(1);
+        Some(values.into_iter().map(|v| table_units::in_degrees(v, power)).collect())
+    }
+
+    /// The power of the radian in the unit of column `name` (see
+    /// [`table_units::radian_power`]), from the units of the table's quantities; `None` where
+    /// one it needs is not known.
+    fn radian_power(&self, name: &str) -> Option<i32> {
+        let base: Vec<(&str, &str)> = self
+            .columns
+            .iter()
+            .zip(&self.units)
+            .filter(|(c, _)| !table_units::is_analog(c))
+            .map(|(c, u)| (c.as_str(), u.as_str()))
+            .collect();
+        table_units::radian_power(name, &base)
     }
 
     /// The unit of a column (`""` when none is known).

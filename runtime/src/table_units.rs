@@ -4,11 +4,7 @@
 /// The unit of column `column` given base units `(name, unit)`, or `""` when a quantity in it
 /// has none. A point output `p` gives its unit to `p.x` and `p.y`.
 pub(crate) fn derive(column: &str, base: &[(&str, &str)]) -> String {
-    let unit_of = |name: &str| {
-        let stem = name.split_once('.').map_or(name, |(p, _)| p);
-        // An empty unit is none: the column's kind is not known.
-        base.iter().find(|(n, _)| *n == name || *n == stem).map(|(_, u)| *u).filter(|u| !u.is_empty())
-    };
+    let unit_of = |name: &str| unit_of(name, base);
     if let Some((num, den)) = analog(column) {
         let Some(top) = unit_of(num) else { return String::new() };
         let parts: Option<Vec<&str>> = den.iter().map(|d| unit_of(d)).collect();
@@ -23,11 +19,39 @@ pub(crate) fn derive(column: &str, base: &[(&str, &str)]) -> String {
     unit_of(column).unwrap_or("").to_string()
 }
 
+/// The power of the radian in the unit of column `column`, given the units of the base
+/// quantities `(name, unit)` (as [`derive`] takes them): 1 for an angle (`rad`), 0 for another
+/// known unit (`mm`, `1`, `unit of t`), and for an analog its quantity's power less its
+/// inputs' (`d(x_c)/d(phi)` in `mm/rad` is -1, `d(beta)/d(phi)` in `rad/rad` 0,
+/// `d2(x_c)/d(phi)^2` -2). `None` where a unit it needs is not known.
+pub(crate) fn radian_power(column: &str, base: &[(&str, &str)]) -> Option<i32> {
+    let power = |name: &str| unit_of(name, base).map(|u| i32::from(u == "rad"));
+    match analog(column) {
+        Some((num, den)) => den.iter().try_fold(power(num)?, |p, d| Some(p - power(d)?)),
+        None => power(column),
+    }
+}
+
+/// `v`, of a unit with the radian to the power `power`, with degrees in place of radians:
+/// times `180/pi` per radian in the numerator, divided by it per radian in the denominator
+/// (one rounding per factor: an angle's is [`to_deg`](crate::to_deg)'s, bit for bit).
+pub(crate) fn in_degrees(v: f64, power: i32) -> f64 {
+    let step = if power > 0 { crate::to_deg } else { crate::deg };
+    (0..power.unsigned_abs()).fold(v, |v, _| step(v))
+}
+
 /// A unit as a factor of a product or power in a derived one: in parentheses where it is
 /// written in words (an input of no known kind is in `unit of t`): `rad/unit of t^2` read as
 /// per the unit of `t^2`. Alone after `/` it reads as meant (`rad/unit of t`).
 fn factor(unit: &str) -> String {
     if unit.contains(' ') { format!("({unit})") } else { unit.to_string() }
+}
+
+/// The unit of quantity `name` among the base units (a point `p` gives its unit to `p.x` and
+/// `p.y`), `None` when it has none: an empty unit is none, the column's kind is not known.
+fn unit_of<'a>(name: &str, base: &[(&str, &'a str)]) -> Option<&'a str> {
+    let stem = name.split_once('.').map_or(name, |(p, _)| p);
+    base.iter().find(|(n, _)| *n == name || *n == stem).map(|(_, u)| *u).filter(|u| !u.is_empty())
 }
 
 /// Whether `column` is an analog column (`d(n)/d(i)`, `d2(n)/...`) rather than a base quantity.
@@ -100,6 +124,30 @@ mod tests {
         assert_eq!(derive("d2(pc.x)/d(phi)d(t)", BASE), "mm/(rad s)");
         assert_eq!(derive("d(beta)/d(phi)", BASE), "");
         assert_eq!(derive("beta", BASE), "");
+    }
+
+    #[test]
+    fn radian_powers_follow_the_quotient() {
+        let base = &[("phi", "rad"), ("th", "rad"), ("t", "unit of t"), ("x_c", "mm"), ("pc", "mm"), ("r", "1")];
+        for (column, power) in [
+            ("phi", 1),
+            ("x_c", 0),
+            ("pc.y", 0),
+            ("r", 0),
+            ("d(x_c)/d(phi)", -1),
+            ("d(phi)/d(th)", 0),
+            ("d2(x_c)/d(phi)^2", -2),
+            ("d2(pc.x)/d(phi)d(t)", -1),
+            ("d2(th)/d(t)^2", 1),
+            ("d(r)/d(phi)", -1),
+        ] {
+            assert_eq!(radian_power(column, base), Some(power), "{column}");
+        }
+        assert_eq!(radian_power("beta", base), None);
+        assert_eq!(radian_power("d(x_c)/d(beta)", base), None);
+        assert_eq!(in_degrees(std::f64::consts::PI, 1), 180.0);
+        assert_eq!(in_degrees(180.0, -1), std::f64::consts::PI);
+        assert_eq!(in_degrees(-2.5, 0), -2.5);
     }
 
     /// A unit written in words is in parentheses as a factor of a power or a product:
