@@ -270,3 +270,31 @@ fn limits_of_a_run_time_four_bar_pass_its_change_point() {
         }
     }
 }
+
+/// A name that is no column is refused listing the columns by group, a group without any as
+/// `none` (it read `outputs ` and stopped, as if cut off), and a point's name with its two
+/// columns; the compiled mechanism and the run-time model of the same declaration alike.
+#[test]
+fn a_name_that_is_no_column_is_told_the_columns() {
+    use kinloop::analysis::ColumnOf;
+    let message = |e: kinloop::Error| e.to_string();
+    let mut slider = read(fx::SLIDER_CRANK_TEXT);
+    set(&mut slider, &[("r", 1.0), ("l", 3.0), ("e", 0.2)]);
+    let slider_kernel = slider.kernel(kinloop::SweepConfig::default()).expect("a kernel");
+    let compiled = message(Column::<fx::SliderCrank>::named("pc").unwrap_err());
+    assert_eq!(
+        compiled,
+        "invalid argument: `pc` is no column of `SliderCrank`: inputs phi; unknowns psi, x; outputs none"
+    );
+    assert_eq!(message("pc".resolve(&slider_kernel).unwrap_err()).replace("fixture", "SliderCrank"), compiled);
+    let mut four = read(fx::FOUR_BAR_TEXT);
+    set(&mut four, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.5)]);
+    let four_kernel = four.kernel(kinloop::SweepConfig::default()).expect("a kernel");
+    let compiled = message(Column::<fx::FourBar>::named("pc").unwrap_err());
+    assert_eq!(
+        compiled,
+        "invalid argument: `pc` is no column of `FourBar`: inputs phi; unknowns beta, gamma; outputs pc.x, pc.y \
+         (`pc` is a point: its columns are `pc.x` and `pc.y`)"
+    );
+    assert_eq!(message("pc".resolve(&four_kernel).unwrap_err()).replace("fixture", "FourBar"), compiled);
+}

@@ -104,13 +104,9 @@ impl<M> Column<M> {
             .or_else(|| find(&M::OUTPUTS).map(ColumnIndex::Output));
         match index {
             Some(index) => Ok(Column::__generated(index, Self::name_at::<N, NI, NO>(index))),
-            None => Err(Error::InvalidArgument(format!(
-                "`{name}` is no column of `{}`: inputs {}; unknowns {}; outputs {}",
-                M::NAME,
-                M::INPUTS.join(", "),
-                M::UNKNOWNS.join(", "),
-                M::OUTPUTS.join(", ")
-            ))),
+            None => {
+                Err(Error::InvalidArgument(no_column_message(name, M::NAME, [&M::INPUTS, &M::UNKNOWNS, &M::OUTPUTS])))
+            }
         }
     }
 
@@ -278,13 +274,25 @@ fn no_column<K: Kernel>(name: &str, k: &K) -> Error {
     let inputs: Vec<&str> = (0..d.ni()).map(|i| k.input_name(i)).collect();
     let unknowns: Vec<&str> = (0..d.n()).map(|u| k.unknown_name(u)).collect();
     let outputs: Vec<&str> = (0..d.no()).map(|o| k.output_name(o)).collect();
-    Error::InvalidArgument(format!(
-        "`{name}` is no column of `{}`: inputs {}; unknowns {}; outputs {}",
-        k.name(),
-        inputs.join(", "),
-        unknowns.join(", "),
-        outputs.join(", ")
-    ))
+    Error::InvalidArgument(no_column_message(name, k.name(), [&inputs, &unknowns, &outputs]))
+}
+
+/// The message of a name that is no column of mechanism `mechanism`, listing its `[inputs,
+/// unknowns, outputs]` (`none` for a group without any: a list left empty read as cut off); a
+/// point's name (`pc`) is told its two columns (`pc.x` and `pc.y`).
+fn no_column_message(name: &str, mechanism: &str, [inputs, unknowns, outputs]: [&[&str]; 3]) -> String {
+    let list = |names: &[&str]| if names.is_empty() { "none".to_string() } else { names.join(", ") };
+    let mut message = format!(
+        "`{name}` is no column of `{mechanism}`: inputs {}; unknowns {}; outputs {}",
+        list(inputs),
+        list(unknowns),
+        list(outputs)
+    );
+    let (x, y) = (format!("{name}.x"), format!("{name}.y"));
+    if outputs.contains(&x.as_str()) && outputs.contains(&y.as_str()) {
+        message.push_str(&format!(" (`{name}` is a point: its columns are `{x}` and `{y}`)"));
+    }
+    message
 }
 
 /// The kind of quantity of column `index` of `k`.
