@@ -34,8 +34,12 @@ fn array<T, const N: usize>(v: Vec<T>, field: &str) -> Result<[T; N], String> {
     v.try_into().map_err(|_| format!("`{field}` has {len} entries where the mechanism has {N}"))
 }
 
+/// `v` as an `A` by `B` array, or the error naming `field`, or the row of it (`dq[1]`), whose
+/// length does not fit: the rows of `dq` are as long as the inputs are many, `dq` itself as the
+/// unknowns, and naming the field alone told a row's length as if it were the field's.
 fn array2<const A: usize, const B: usize>(v: Vec<Vec<f64>>, field: &str) -> Result<[[f64; B]; A], String> {
-    let rows: Result<Vec<[f64; B]>, String> = v.into_iter().map(|r| array(r, field)).collect();
+    let rows: Result<Vec<[f64; B]>, String> =
+        v.into_iter().enumerate().map(|(k, r)| array(r, &format!("{field}[{k}]"))).collect();
     array(rows?, field)
 }
 
@@ -43,7 +47,8 @@ fn array3<const A: usize, const B: usize, const C: usize>(
     v: Vec<Vec<Vec<f64>>>,
     field: &str,
 ) -> Result<[[[f64; C]; B]; A], String> {
-    let rows: Result<Vec<[[f64; C]; B]>, String> = v.into_iter().map(|r| array2(r, field)).collect();
+    let rows: Result<Vec<[[f64; C]; B]>, String> =
+        v.into_iter().enumerate().map(|(k, r)| array2(r, &format!("{field}[{k}]"))).collect();
     array(rows?, field)
 }
 

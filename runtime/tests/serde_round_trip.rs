@@ -75,3 +75,30 @@ fn a_table_of_the_wrong_shape_is_refused_saying_where() {
     let none: Table = serde_json::from_str(r#"{"columns":["phi"],"rows":[]}"#).unwrap();
     assert_eq!(none, Table { columns: vec!["phi".into()], rows: Vec::new(), units: Vec::new() });
 }
+
+/// A state of other sizes is refused naming the field, or the row of it, whose length does
+/// not fit: `dq[1]` has one entry per input, where `dq` has one row per unknown.
+#[test]
+fn a_state_of_other_sizes_is_refused_naming_the_row() {
+    use kinloop_runtime::{Health, Kin, SolveReport};
+    let k = Kin::<2, 1, 1> {
+        x: [0.5],
+        q: [1.0, 2.0],
+        dq: [[0.1], [0.2]],
+        d2q: [[[0.3]], [[0.4]]],
+        out: [3.0],
+        dout: [[0.5]],
+        d2out: [[[0.6]]],
+        report: SolveReport::direct(),
+        health: Health { min_pivot: 0.5, ..Health::default() },
+    };
+    let json = serde_json::to_string(&k).unwrap();
+    assert_eq!(serde_json::from_str::<Kin<2, 1, 1>>(&json).unwrap(), k);
+    let error = |json: &str| serde_json::from_str::<Kin<2, 1, 1>>(json).unwrap_err().to_string();
+    let wide = json.replace("[[0.1],[0.2]]", "[[0.1],[0.2,0.7]]");
+    assert!(error(&wide).contains("`dq[1]` has 2 entries where the mechanism has 1"), "{}", error(&wide));
+    let tall = json.replace("[[0.1],[0.2]]", "[[0.1],[0.2],[0.7]]");
+    assert!(error(&tall).contains("`dq` has 3 entries where the mechanism has 2"), "{}", error(&tall));
+    let deep = json.replace("[[[0.3]],[[0.4]]]", "[[[0.3]],[[0.4,0.8]]]");
+    assert!(error(&deep).contains("`d2q[1][0]` has 2 entries where the mechanism has 1"), "{}", error(&deep));
+}
