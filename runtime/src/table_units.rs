@@ -9,7 +9,7 @@ pub(crate) fn derive(column: &str, base: &[(&str, &str)]) -> String {
         let Some(top) = unit_of(num) else { return String::new() };
         let parts: Option<Vec<&str>> = den.iter().map(|d| unit_of(d)).collect();
         return match parts.as_deref() {
-            Some([a]) => format!("{top}/{a}"),
+            Some([a]) => format!("{top}/{}", divisor(a)),
             // Two inputs of the same unit (two angles): the square of it.
             Some([a, b]) if a == b => format!("{top}/{}^2", factor(a)),
             Some([a, b]) => format!("{top}/({} {})", factor(a), factor(b)),
@@ -42,9 +42,17 @@ pub(crate) fn in_degrees(v: f64, power: i32) -> f64 {
 
 /// A unit as a factor of a product or power in a derived one: in parentheses where it is
 /// written in words (an input of no known kind is in `unit of t`): `rad/unit of t^2` read as
-/// per the unit of `t^2`. Alone after `/` it reads as meant (`rad/unit of t`).
+/// per the unit of `t^2`; and where it is itself a quotient, product or power (a unit given as
+/// `m/s`, `N*m`, `m^2`): `mm/m/s^2` read as per metre and per second squared, `(m/s)^2` meant.
 fn factor(unit: &str) -> String {
-    if unit.contains(' ') { format!("({unit})") } else { unit.to_string() }
+    if unit.contains([' ', '/', '*', '^']) { format!("({unit})") } else { unit.to_string() }
+}
+
+/// A unit as the divisor of a derived one, alone after `/`: in parentheses where it is itself
+/// a quotient or a product (`mm/(m/s)`, which `mm/m/s` would read as mm per metre per second);
+/// one in words (`rad/unit of t`) or a power (`mm/m^2`) reads as meant without them.
+fn divisor(unit: &str) -> String {
+    if unit.contains(['/', '*']) { format!("({unit})") } else { unit.to_string() }
 }
 
 /// The unit of quantity `name` among the base units (a point `p` gives its unit to `p.x` and
@@ -148,6 +156,22 @@ mod tests {
         assert_eq!(in_degrees(std::f64::consts::PI, 1), 180.0);
         assert_eq!(in_degrees(180.0, -1), std::f64::consts::PI);
         assert_eq!(in_degrees(-2.5, 0), -2.5);
+    }
+
+    /// A unit given as a quotient, product or power is in parentheses where the derived unit
+    /// would read otherwise: `mm/m/s` is mm per metre per second, not per `m/s`.
+    #[test]
+    fn compound_units_are_in_parentheses() {
+        let base = &[("x", "mm"), ("v", "m/s"), ("f", "N*m"), ("a", "m^2"), ("phi", "rad")];
+        assert_eq!(derive("d(x)/d(v)", base), "mm/(m/s)");
+        assert_eq!(derive("d2(x)/d(v)^2", base), "mm/(m/s)^2");
+        assert_eq!(derive("d2(x)/d(phi)d(v)", base), "mm/(rad (m/s))");
+        assert_eq!(derive("d(x)/d(f)", base), "mm/(N*m)");
+        assert_eq!(derive("d(x)/d(a)", base), "mm/m^2");
+        assert_eq!(derive("d2(x)/d(a)^2", base), "mm/(m^2)^2");
+        assert_eq!(derive("d2(x)/d(phi)^2", base), "mm/rad^2");
+        // A quotient on top reads as meant: (m/s) per rad.
+        assert_eq!(derive("d(v)/d(phi)", base), "m/s/rad");
     }
 
     /// A unit written in words is in parentheses as a factor of a power or a product:
