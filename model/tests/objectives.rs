@@ -169,3 +169,69 @@ fn a_model_without_sensitivities_is_refused() {
     assert!(refused(turn.extremum_with_gradient("s", Extreme::Max).map(drop)));
     assert!(refused(turn.integral_with_gradient("s").map(drop)));
 }
+
+/// Two curved laws meeting at a corner: `s = min(a sin phi, b cos phi)` has its maximum where
+/// they cross, `tan phi = b / a`, and `s = max(..)` its minimum there.
+fn corner_law(kind: &str) -> String {
+    format!(
+        "#[kinloop(sensitivities)]
+pub struct Corner {{
+    params a = 1, b = 2;
+    input phi;
+    unknowns s = 0;
+    eq law: s == {kind}(a * sin(phi), b * cos(phi));
+}}"
+    )
+}
+
+/// The corner of `corner_law`'s branches in closed form: `(phi, s)` with `phi = atan2(b, a)`,
+/// `s = a b / hypot(a, b)`.
+fn corner_closed_form(a: f64, b: f64) -> (f64, f64) {
+    (b.atan2(a), a * b / a.hypot(b))
+}
+
+/// An extremum at a corner of the motion (a kink) is not a root of the velocity analog, so the
+/// envelope theorem does not give its gradient: one side's `d s / d p` and `x_grad = 0` came
+/// back (here 0.89 and 0 by `a` where the corner's value and location move by 0.72 and -0.4).
+/// Both now follow the corner (where the branches are equal) as central differences of the
+/// closed form do; the cam law `h min(phi / p0, (2 pi - phi) / (2 pi - p0))` has its peak `h`
+/// at `phi = p0` whatever `p0`.
+#[test]
+fn an_extremum_at_a_kink_has_the_corners_gradients() {
+    let (a, b) = (1.0, 2.0);
+    let (x, v) = corner_closed_form(a, b);
+    // Central differences of the closed form: step 1e-5 leaves truncation ~1e-10 and
+    // rounding ~1e-11 in the derivatives; the corner's are exact to the rounding of a step of
+    // a few units of it beside the corner, so 1e-8 tells a right gradient from a side's.
+    let h = 1e-5;
+    let fd = |f: &dyn Fn(f64, f64) -> f64| {
+        [(f(a + h, b) - f(a - h, b)) / (2.0 * h), (f(a, b + h) - f(a, b - h)) / (2.0 * h)]
+    };
+    let (dx, dv) = (fd(&|a, b| corner_closed_form(a, b).0), fd(&|a, b| corner_closed_form(a, b).1));
+    for (kind, which) in [("min", Extreme::Max), ("max", Extreme::Min)] {
+        let mut m = read(&corner_law(kind));
+        for n in [16, 41, 100] {
+            let run = m.sampled(&[0.1], &[1.5], n, &[0.1]).unwrap();
+            let e = run.extremum_with_gradient("s", which).unwrap();
+            assert!((e.x - x).abs() < 1e-14 && (e.value - v).abs() < 1e-14, "{kind}, {n}: {e:?}");
+            for p in 0..2 {
+                assert!((e.grad[p] - dv[p]).abs() < 1e-8, "{kind}, {n}: grad {:?} vs {dv:?}", e.grad);
+                assert!((e.x_grad[p] - dx[p]).abs() < 1e-8, "{kind}, {n}: x_grad {:?} vs {dx:?}", e.x_grad);
+            }
+        }
+    }
+    let mut cam = read(
+        "#[kinloop(sensitivities)]
+pub struct CamLaw {
+    params h = 1, p0 = 2;
+    input phi;
+    unknowns s = 0;
+    eq law: s == h * min(phi / p0, (6.283185307179586 - phi) / (6.283185307179586 - p0));
+}",
+    );
+    let run = cam.sampled(&[0.3], &[6.0], 73, &[0.0]).unwrap();
+    let top = run.extremum_with_gradient("s", Extreme::Max).unwrap();
+    // d h / d (h, p0) = (1, 0); the corner phi = p0 moves by (0, 1).
+    assert!((top.grad[0] - 1.0).abs() < 1e-12 && top.grad[1].abs() < 1e-12, "{top:?}");
+    assert!(top.x_grad[0].abs() < 1e-12 && (top.x_grad[1] - 1.0).abs() < 1e-12, "{top:?}");
+}

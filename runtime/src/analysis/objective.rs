@@ -7,7 +7,9 @@
 //! * [`Sampled::extremum_with_gradient`]: the maximum or minimum of a quantity over a sampled
 //!   range, located as a root of its velocity analog, with the gradient of its value (by the envelope theorem,
 //!   `d max / dp = d q / dp` at the extremum, since `dq/dx = 0` there) and of its location
-//!   (`dx*/dp = -(d q' / dp) / q''`).
+//!   (`dx*/dp = -(d q' / dp) / q''`); at a corner of the motion (a kink, where the analog jumps
+//!   from one sign to the other) both follow the corner, where the branches on its two sides
+//!   are equal.
 //! * [`Sampled::integral_with_gradient`]: the trapezoidal integral of a quantity over the
 //!   samples and its exact gradient.
 
@@ -27,7 +29,7 @@ pub struct ExtremumOf<G> {
     pub x: f64,
     /// The extreme value.
     pub value: f64,
-    /// `d value / d p_k` (envelope theorem).
+    /// `d value / d p_k` (envelope theorem; at a kink, along the corner).
     pub grad: G,
     /// `d x / d p_k`: how the extremum moves with the parameters.
     pub x_grad: G,
@@ -73,6 +75,28 @@ fn at_crossing<K: Kernel>(k: &K, c: ColumnIndex, which: Extreme, x: f64) -> Erro
     ))
 }
 
+/// The column on one side of a corner: its jet and its derivatives by every parameter.
+struct Side {
+    jet: crate::analysis::Jet,
+    value_grad: Vec<f64>,
+}
+
+/// The gradients of an extremum at a corner where the branch `L` before it meets the branch
+/// `R` after it (`left`, `right`: each one's analog `L_x` and parameter derivatives `L_p`).
+/// The corner stays where the branches are equal, `L(x, p) = R(x, p)`; differentiating that
+/// (implicit function theorem; `L_x != R_x` at a kink) moves it by
+/// `dx/dp = -(L_p - R_p) / (L_x - R_x)`, and the value `L(x(p), p)` by
+/// `L_p + L_x dx/dp = (L_x R_p - R_x L_p) / (L_x - R_x)`, the same from either branch. The
+/// envelope theorem does not apply: the analog does not vanish there.
+fn corner_gradients(left: &Side, right: &Side, grad: &mut [f64], x_grad: &mut [f64]) {
+    let (lx, rx) = (left.jet.d1, right.jet.d1);
+    for (p, (g, xg)) in grad.iter_mut().zip(x_grad.iter_mut()).enumerate() {
+        let (lp, rp) = (left.value_grad[p], right.value_grad[p]);
+        *xg = -(lp - rp) / (lx - rx);
+        *g = (lx * rp - rx * lp) / (lx - rx);
+    }
+}
+
 impl<K: Kernel> SampledOf<K> {
     /// The one implementation of the extremum with gradients: `sens_at(state, kin, sens)`
     /// writes the kinematics and sensitivities at a state's position into `kin` and `sens`;
@@ -82,7 +106,7 @@ impl<K: Kernel> SampledOf<K> {
         c: ColumnIndex,
         which: Extreme,
         sens: &mut S,
-        sens_at: impl FnOnce(&KinOf<K>, &mut KinOf<K>, &mut S) -> Result<(), Error>,
+        mut sens_at: impl FnMut(&KinOf<K>, &mut KinOf<K>, &mut S) -> Result<(), Error>,
         grad: &mut [f64],
         x_grad: &mut [f64],
     ) -> Result<(f64, f64), Error> {
@@ -103,7 +127,51 @@ impl<K: Kernel> SampledOf<K> {
             // At an end of the range the analog does not vanish: the extremum stays there.
             x_grad[p] = if interior && jet.d2 != 0.0 { -dg / jet.d2 } else { 0.0 };
         }
+        if interior && let Some([left, right]) = self.corner_sides(c, which, jet.x, grad.len(), sens, &mut sens_at)? {
+            corner_gradients(&left, &right, grad, x_grad);
+        }
         Ok((jet.x, jet.value))
+    }
+
+    /// The column on either side of a corner of the motion (a kink) at the located extremum
+    /// `x`, or `None` where the extremum is smooth: its velocity analog and parameter
+    /// derivatives a few units of rounding before and after `x`, where the analog jumps from
+    /// one sign to the other (positive to negative at a maximum) by more than a smooth root's
+    /// analog could change over that step.
+    ///
+    /// The extremum is located to a couple of units of rounding of `x` (see
+    /// [`bracketed_root`](super::extremes::bracketed_root), whose floor near `x = 0` is `1e-6`
+    /// of a sample spacing), so that the two points straddle the corner; over so short a step
+    /// each side's derivatives are those of its branch at the corner to rounding.
+    fn corner_sides<S: SensState>(
+        &self,
+        c: ColumnIndex,
+        which: Extreme,
+        x: f64,
+        np: usize,
+        sens: &mut S,
+        sens_at: &mut impl FnMut(&KinOf<K>, &mut KinOf<K>, &mut S) -> Result<(), Error>,
+    ) -> Result<Option<[Side; 2]>, Error> {
+        let s = self.path_values();
+        let spacing = (s[s.len() - 1] - s[0]) / (s.len() - 1).max(1) as f64;
+        let step = 64.0 * f64::EPSILON * (x.abs() + 1e-6 * spacing);
+        let mut side = |at: f64| -> Result<Side, Error> {
+            let state = self.at(at)?;
+            let mut kin = state.clone();
+            sens_at(&state, &mut kin, sens)?;
+            let jet = jet_of_input(c, &kin);
+            let value_grad = (0..np).map(|p| column_sens(sens, c, p).0).collect();
+            Ok(Side { jet, value_grad })
+        };
+        let (left, right) = (side(x - step)?, side(x + step)?);
+        // A smooth root's analog changes by about `d2 * 2 step` across it; a kink's jumps by a
+        // part of the analog's own size. The factor 1e3 and the floor of 1e-9 of the largest
+        // analog sampled leave rounding and curvature on the smooth side of the line.
+        let largest = self.states().iter().map(|k| jet_of_input(c, k).d1.abs()).fold(0.0, f64::max);
+        let (l, r) = (left.jet.d1, right.jet.d1);
+        let turns = if which == Extreme::Max { l > 0.0 && r < 0.0 } else { l < 0.0 && r > 0.0 };
+        let smooth = 1e3 * (left.jet.d2.abs() + right.jet.d2.abs()) * step + 1e-9 * largest;
+        Ok((turns && (l - r).abs() > smooth).then_some([left, right]))
     }
 
     /// The one implementation of the integral with gradient (`sens_at` as for the extremum);
@@ -198,7 +266,11 @@ where
     /// are solved with the sweep configuration's Newton settings.
     ///
     /// An extremum at an end of the range (where the analog does not vanish) is returned at the
-    /// end with `x_grad = 0` and `grad = dq/dp` there. An extremum at a singular crossing the
+    /// end with `x_grad = 0` and `grad = dq/dp` there. An extremum at a corner of the motion (a
+    /// kink: `min`, `max`, `abs` in the declaration, as a uniform-velocity cam law has) moves
+    /// with the corner, where the branches on its two sides are equal: `x_grad` and `grad` are
+    /// that corner's (the implicit function theorem on `L(x, p) = R(x, p)`), not one side's
+    /// `dq/dp`. An extremum at a singular crossing the
     /// sweep passed ([`AtSingular::Continue`](crate::AtSingular::Continue), a change point) is
     /// an [`Error::InvalidArgument`]: it is a corner there, which moves or vanishes as the
     /// parameters do, and the sensitivities are singular.
