@@ -27,6 +27,27 @@ pub(crate) struct Frame {
 }
 
 impl Frame {
+    /// The same four-bar with every length divided by the power of two at most the largest
+    /// (exact, so the angles are the same): the squares and products of lengths the
+    /// constructions below form then stay within the range of doubles at any unit, where those
+    /// of lengths beyond about `1e154` overflow and those below `1e-154` underflow. Unchanged
+    /// when no length is positive and finite.
+    fn unit_sized(&self) -> Frame {
+        let l = self.links;
+        let largest = [l.ground, l.input, l.coupler, l.output].into_iter().fold(0.0, f64::max);
+        if !(largest > 0.0 && largest.is_finite()) {
+            return Frame { links: l };
+        }
+        let unit = crate::number::pow2_at_most(largest);
+        let links = FourBarLinks {
+            ground: l.ground / unit,
+            input: l.input / unit,
+            coupler: l.coupler / unit,
+            output: l.output / unit,
+        };
+        Frame { links }
+    }
+
     /// The input's end `B`.
     pub fn b(&self, phi: f64) -> Vec2 {
         let (s, c) = phi.sin_cos();
@@ -49,7 +70,8 @@ impl Frame {
     /// `D -> C` is at most `sine` in magnitude (both closures are then the same position, to
     /// that angle), or `B` is on `D`, or a value is not finite.
     pub fn closure(&self, phi: f64, psi: f64, sine: f64) -> Option<Closure> {
-        let (b, d, c) = (self.b(phi), self.d(), self.c(psi));
+        let f = self.unit_sized();
+        let (b, d, c) = (f.b(phi), f.d(), f.c(psi));
         // (D - B) x (C - B) = (D - B) x (C - D) = |D - B| |C - D| sin(angle at D).
         let turn = (d - b).cross(c - b);
         let bound = sine * (d - b).norm() * (c - d).norm();
@@ -66,8 +88,9 @@ impl Frame {
     /// radius `coupler` about `B` meets the circle of radius `output` about `D`. `None` where
     /// they do not meet (the linkage cannot be assembled there).
     pub fn output_angle(&self, phi: f64, closure: Closure) -> Option<f64> {
-        let FourBarLinks { coupler: b, output: c, .. } = self.links;
-        let (pb, d) = (self.b(phi), self.d());
+        let f = self.unit_sized();
+        let FourBarLinks { coupler: b, output: c, .. } = f.links;
+        let (pb, d) = (f.b(phi), f.d());
         let e = pb - d;
         let l = e.norm();
         if l.is_nan() || l <= 0.0 {
@@ -134,6 +157,45 @@ mod tests {
         assert_eq!(f.closure(phi, f64::NAN, 1e-12), None);
         let on_d = Frame { links: FourBarLinks { ground: 1.0, input: 1.0, coupler: 1.0, output: 1.0 } };
         assert_eq!(on_d.closure(0.0, 1.0, 1e-12), None, "B on D");
+    }
+
+    /// The output angle by the law of cosines at the unit scale: the angle at `D` between
+    /// `D -> B` and `D -> C` is `acos((c^2 + l^2 - b^2) / (2 c l))`, `l = |B - D|`, turned from
+    /// the direction of `D -> B` clockwise for the counter-clockwise closure.
+    fn law_of_cosines(l: FourBarLinks, phi: f64, closure: Closure) -> f64 {
+        let e = Vec2::new(l.input * phi.cos() - l.ground, l.input * phi.sin());
+        let r = e.norm();
+        let gamma = ((l.output * l.output + r * r - l.coupler * l.coupler) / (2.0 * l.output * r)).acos();
+        if closure == Closure::CounterClockwise { e.angle() - gamma } else { e.angle() + gamma }
+    }
+
+    /// Lengths in any unit give the same angles: their squares left the range of doubles, so
+    /// that a four-bar of lengths near `1e200` could not be assembled anywhere and one near
+    /// `1e-200` came out with its output along the ground at every input (`C` on `D`: every
+    /// square underflowed to zero), and one near `1e-160` lost digits to subnormal squares. The
+    /// angles agree with the law of cosines at the unit scale to the rounding of the scaling.
+    #[test]
+    fn output_angles_and_closures_do_not_depend_on_the_unit() {
+        let unit = frame().links;
+        for scale in [1e-300, 1e-200, 1e-160, 1e-9, 1.0, 1e9, 1e160, 1e200, 1e300] {
+            let links = FourBarLinks {
+                ground: unit.ground * scale,
+                input: unit.input * scale,
+                coupler: unit.coupler * scale,
+                output: unit.output * scale,
+            };
+            let f = Frame { links };
+            for k in 0..24 {
+                let phi = k as f64 * std::f64::consts::TAU / 24.0;
+                for closure in [Closure::CounterClockwise, Closure::Clockwise] {
+                    let want = law_of_cosines(unit, phi, closure);
+                    let psi = f.output_angle(phi, closure);
+                    let close = psi.is_some_and(|psi| angle_difference(psi, want).abs() < 1e-13);
+                    assert!(close, "scale {scale:e}, phi {phi}, {closure:?}: {psi:?} vs {want}");
+                    assert_eq!(f.closure(phi, want, 1e-12), Some(closure), "scale {scale:e}, phi {phi}");
+                }
+            }
+        }
     }
 
     #[test]
