@@ -101,6 +101,19 @@ impl TryFrom<TableRepr> for Table {
     }
 }
 
+/// An `InvalidData` error naming the first column name of a CSV header that appears twice:
+/// [`Table::column`] would find the first of them alone, the other's values unreachable by name.
+fn check_distinct(columns: &[String]) -> io::Result<()> {
+    for (k, name) in columns.iter().enumerate() {
+        if let Some(j) = columns[..k].iter().position(|c| c == name) {
+            let message =
+                format!("CSV header: the column name `{name}` appears twice (columns {} and {})", j + 1, k + 1);
+            return Err(io::Error::new(io::ErrorKind::InvalidData, message));
+        }
+    }
+    Ok(())
+}
+
 impl Table {
     /// An empty table with these columns.
     pub fn new(columns: Vec<String>) -> Self {
@@ -231,8 +244,9 @@ impl Table {
     /// Writes the table as CSV (header line with the units, then one line per row; shortest
     /// round-trip formatting of every value, so reading it back gives the same bits, positional
     /// for ordinary magnitudes and in exponent notation (`1e300`, `2.08e-17`) for `|v| >= 1e16`
-    /// or `0 < |v| < 1e-5`; names and units read back exactly, and a unit the header cannot
-    /// hold, one containing ` [`, is an `InvalidInput` error).
+    /// or `0 < |v| < 1e-5`; names and units read back exactly, and what the header cannot
+    /// hold, a unit containing ` [` or a name beginning with white space, is an `InvalidInput`
+    /// error). Names that appear twice are written, but [`Table::read_csv`] refuses them.
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
         let mut out = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(w);
         let header = self
@@ -256,10 +270,14 @@ impl Table {
 
     /// Reads a table written by [`Table::write_csv`] (or any CSV with a header line and numeric
     /// fields, positional or in exponent notation; `NaN`, `inf` and `-inf` as Rust writes
-    /// them): a field that is not a number is an `InvalidData` error naming its line and column.
+    /// them). Header fields are trimmed as numbers are (`phi, x` has a column `x`). A field
+    /// that is not a number is an `InvalidData` error naming its line and column, and so is a
+    /// column name that appears twice (naming it).
     pub fn read_csv(r: impl io::Read) -> io::Result<Table> {
         let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
-        let (columns, units) = input.headers()?.iter().map(table_units::split_header).unzip();
+        let header = input.headers()?;
+        let (columns, units): (Vec<String>, Vec<String>) = header.iter().map(table_units::read_header).unzip();
+        check_distinct(&columns)?;
         let mut t = Table { columns, rows: Vec::new(), units };
         for (line, record) in input.records().enumerate() {
             let record = record?;

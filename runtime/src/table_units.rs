@@ -90,21 +90,39 @@ fn analog(column: &str) -> Option<(&str, Vec<&str>)> {
     Some((num, inputs))
 }
 
-/// The header field of a column: `name [unit]`, or `name` without a unit; [`split_header`]
+/// The header field of a column: `name [unit]`, or `name` without a unit; [`read_header`]
 /// reads back exactly this name and unit.
 ///
 /// The reader takes the text after the last ` [` of a field ending in `]` as the unit. So a
-/// name that itself ends like `a [b]` gets an empty unit written, `a [b] []`, and a unit
-/// holding ` [` cannot be written at all (the reader would cut it there): an
-/// `InvalidInput` error naming the column.
+/// name that itself ends like `a [b]`, or ends in white space, gets an empty unit written
+/// (`a [b] []`: the trimming stops at the `]`), and a unit holding ` [` cannot be written at
+/// all (the reader would cut it there); nor can a name that begins with white space (the
+/// reader trims it off, as it does the spaces of `phi, x`): an `InvalidInput` error naming
+/// the column.
 pub(crate) fn header(name: &str, unit: &str) -> std::io::Result<String> {
+    let invalid = |message: String| Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, message));
     if unit.contains(" [") {
-        let message = format!(
+        return invalid(format!(
             "the unit `{unit}` of column `{name}` holds ` [`, which the CSV header cannot tell from the start of the unit"
-        );
-        return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, message));
+        ));
     }
-    Ok(if !unit.is_empty() || split_header(name).0 != name { format!("{name} [{unit}]") } else { name.to_string() })
+    if name.trim_start() != name {
+        return invalid(format!("the column name `{name}` begins with white space, which reading the CSV trims off"));
+    }
+    let bare = unit.is_empty() && name.trim_end() == name && split_header(name).0 == name;
+    Ok(if bare { name.to_string() } else { format!("{name} [{unit}]") })
+}
+
+/// The name and unit of a header field as read from a CSV: [`split_header`] of the field
+/// without white space at its ends, as numbers are read (`phi, x [mm]` has the column `x`). The
+/// end is trimmed before the split and the name's start after it: an empty name with a unit,
+/// ` [mm]`, keeps the space that marks the unit.
+pub(crate) fn read_header(field: &str) -> (String, String) {
+    let (name, unit) = split_header(field.trim_end());
+    match name.trim_start() {
+        trimmed if trimmed.len() == name.len() => (name, unit),
+        trimmed => (trimmed.to_string(), unit),
+    }
 }
 
 /// Splits a header field `name [unit]` into its name and unit (`""` when there is none).
@@ -197,12 +215,13 @@ mod tests {
     #[test]
     fn names_and_units_with_brackets_round_trip_or_are_refused() {
         // Names that read like `name [unit]` themselves, units with brackets, empty ones.
-        let names = ["a [b]", "a []", "a [b] [c]", "[x]", " [", "]", "", "a [", "p [m] ", "x\n[y]"];
+        // Names that end in white space, which the reader trims from the field.
+        let names = ["a [b]", "a []", "a [b] [c]", "[x]", "[ ", "]", "", "a [", "p [m] ", "x\n[y]", "x ", "t\t"];
         let units = ["", "b", "]", "[", "m]", "[m", "kg/(m s)^2", "a]b"];
         for name in names {
             for unit in units {
                 let field = header(name, unit).unwrap();
-                assert_eq!(split_header(&field), (name.to_string(), unit.to_string()), "{field:?}");
+                assert_eq!(read_header(&field), (name.to_string(), unit.to_string()), "{field:?}");
             }
         }
         // Through a whole table written and read as CSV.
@@ -216,6 +235,10 @@ mod tests {
         let err = header("w", "a [b").unwrap_err();
         assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
         assert!(err.to_string().contains("unit `a [b` of column `w`"), "{err}");
+        // A name that begins with white space would lose it: refused, naming it.
+        let err = header(" [", "").unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+        assert!(err.to_string().contains("column name ` [` begins with white space"), "{err}");
         t.units[0] = "x [y]".into();
         assert_eq!(t.write_csv(Vec::new()).unwrap_err().kind(), std::io::ErrorKind::InvalidInput);
     }

@@ -81,3 +81,36 @@ fn a_row_of_the_wrong_length_is_refused_in_every_build() {
     let mut t = sample();
     t.push(vec![1.0, 2.0]);
 }
+
+/// Header names are trimmed as the numbers under them are: a hand-written `phi, x [mm]` has
+/// the columns `phi` and `x`, in `mm`.
+#[test]
+fn header_names_are_trimmed_as_numbers_are() {
+    let t = Table::read_csv("phi, x [mm] ,\ty\n0, 1.5 ,2\n".as_bytes()).unwrap();
+    assert_eq!(t.columns, ["phi", "x", "y"]);
+    assert_eq!(t.unit("x"), Some("mm"));
+    assert_eq!(t.column("x"), Some(vec![1.5]));
+    assert_eq!(t.column("y"), Some(vec![2.0]));
+}
+
+/// A name that appears twice (here once it is trimmed) is refused, naming it: `column` would
+/// find the first alone.
+#[test]
+fn a_column_name_that_appears_twice_is_an_error() {
+    let err = Table::read_csv("x,y, x\n1,2,3\n".as_bytes()).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidData);
+    assert!(err.to_string().contains("`x` appears twice (columns 1 and 3)"), "{err}");
+}
+
+/// A name that ends in white space reads back whole; one that begins with it cannot (reading
+/// trims it off) and is refused when written.
+#[test]
+fn names_with_white_space_at_an_end_round_trip_or_are_refused() {
+    let mut t = Table::new(vec!["a ".into(), "b".into()]);
+    t.push(vec![1.0, 2.0]);
+    let mut csv = Vec::new();
+    t.write_csv(&mut csv).unwrap();
+    assert_eq!(Table::read_csv(&csv[..]).unwrap(), t, "{}", String::from_utf8_lossy(&csv));
+    let t = Table::new(vec![" a".into()]);
+    assert_eq!(t.write_csv(Vec::new()).unwrap_err().kind(), std::io::ErrorKind::InvalidInput);
+}
