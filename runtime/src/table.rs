@@ -101,6 +101,19 @@ impl TryFrom<TableRepr> for Table {
     }
 }
 
+/// A CSV reader's error as an `io::Error`: a failure to read keeps its own kind, a malformed
+/// input (a ragged row, text that is not UTF-8) is `InvalidData`, as a field that is not a
+/// number is (the csv crate's own conversion makes them all `Other`).
+fn csv_error(e: csv::Error) -> io::Error {
+    if !e.is_io_error() {
+        return io::Error::new(io::ErrorKind::InvalidData, e.to_string());
+    }
+    match e.into_kind() {
+        csv::ErrorKind::Io(e) => e,
+        kind => io::Error::new(io::ErrorKind::InvalidData, format!("{kind:?}")),
+    }
+}
+
 /// An `InvalidData` error naming the first column name of a CSV header that appears twice:
 /// [`Table::column`] would find the first of them alone, the other's values unreachable by name.
 fn check_distinct(columns: &[String]) -> io::Result<()> {
@@ -270,17 +283,18 @@ impl Table {
 
     /// Reads a table written by [`Table::write_csv`] (or any CSV with a header line and numeric
     /// fields, positional or in exponent notation; `NaN`, `inf` and `-inf` as Rust writes
-    /// them). Header fields are trimmed as numbers are (`phi, x` has a column `x`). A field
-    /// that is not a number is an `InvalidData` error naming its line and column, and so is a
-    /// column name that appears twice (naming it).
+    /// them). Header fields are trimmed as numbers are (`phi, x` has a column `x`). Errors are
+    /// `InvalidData`: a field that is not a number (naming its line and column), a row of
+    /// another length than the header (naming its line), a column name that appears twice
+    /// (naming it), or text that is not UTF-8.
     pub fn read_csv(r: impl io::Read) -> io::Result<Table> {
         let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
-        let header = input.headers()?;
+        let header = input.headers().map_err(csv_error)?;
         let (columns, units): (Vec<String>, Vec<String>) = header.iter().map(table_units::read_header).unzip();
         check_distinct(&columns)?;
         let mut t = Table { columns, rows: Vec::new(), units };
         for (line, record) in input.records().enumerate() {
-            let record = record?;
+            let record = record.map_err(csv_error)?;
             let row = record.iter().enumerate().map(|(k, field)| {
                 field.trim().parse::<f64>().map_err(|_| {
                     let column = t.columns.get(k).map_or("?", String::as_str);

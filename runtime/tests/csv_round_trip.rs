@@ -114,3 +114,16 @@ fn names_with_white_space_at_an_end_round_trip_or_are_refused() {
     let t = Table::new(vec![" a".into()]);
     assert_eq!(t.write_csv(Vec::new()).unwrap_err().kind(), std::io::ErrorKind::InvalidInput);
 }
+
+/// A row of another length than the header is malformed data, as a field that is not a number
+/// is: `InvalidData` (it was `Other`), naming the line.
+#[test]
+fn a_ragged_row_is_invalid_data() {
+    let err = Table::read_csv("a,b\n1,2\n3\n".as_bytes()).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidData);
+    assert!(err.to_string().contains("line: 3"), "{err}");
+    // Text that is not UTF-8, in the header or a row, likewise.
+    for bytes in [&b"a,\xff\n1,2\n"[..], &b"a,b\n1,\xff\n"[..]] {
+        assert_eq!(Table::read_csv(bytes).unwrap_err().kind(), std::io::ErrorKind::InvalidData);
+    }
+}
