@@ -114,6 +114,20 @@ fn csv_error(e: csv::Error) -> io::Error {
     }
 }
 
+/// The CSV of a table of no columns: nothing, for no rows (which reads back as that table),
+/// and for `rows` rows an `InvalidInput` error. CSV has no line for a row of no values: the
+/// csv crate writes a record of none as `""`, one empty field, which would read back as a
+/// column named `""` and its rows as fields that are not numbers.
+fn no_columns(rows: usize) -> io::Result<()> {
+    if rows == 0 {
+        return Ok(());
+    }
+    let message = format!(
+        "a table of {rows} rows and no columns cannot be written as CSV, which has no line for a row of no values"
+    );
+    Err(io::Error::new(io::ErrorKind::InvalidInput, message))
+}
+
 /// An `InvalidData` error naming the first column name of a CSV header that appears twice:
 /// [`Table::column`] would find the first of them alone, the other's values unreachable by name.
 fn check_distinct(columns: &[String]) -> io::Result<()> {
@@ -259,8 +273,13 @@ impl Table {
     /// for ordinary magnitudes and in exponent notation (`1e300`, `2.08e-17`) for `|v| >= 1e16`
     /// or `0 < |v| < 1e-5`; names and units read back exactly, and what the header cannot
     /// hold, a unit containing ` [` or a name beginning with white space, is an `InvalidInput`
-    /// error). Names that appear twice are written, but [`Table::read_csv`] refuses them.
+    /// error, as is a table of rows but no columns, whose rows CSV cannot hold; a table of no
+    /// columns and no rows is written as nothing). Names that appear twice are written, but
+    /// [`Table::read_csv`] refuses them.
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
+        if self.columns.is_empty() {
+            return no_columns(self.rows.len());
+        }
         let mut out = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(w);
         let header = self
             .columns

@@ -127,3 +127,27 @@ fn a_ragged_row_is_invalid_data() {
         assert_eq!(Table::read_csv(bytes).unwrap_err().kind(), std::io::ErrorKind::InvalidData);
     }
 }
+
+/// A table of no columns: CSV has no line for a row of no values (the csv crate wrote `""`, the
+/// line of one empty field, so that one read back as a column named `""`, and its rows as
+/// fields that are not numbers). With no rows it is written as nothing and reads back; with
+/// rows it is refused when written.
+#[test]
+fn a_table_of_no_columns_round_trips_or_is_refused() {
+    let empty = Table::new(Vec::new());
+    let mut csv = Vec::new();
+    empty.write_csv(&mut csv).unwrap();
+    assert_eq!(Table::read_csv(&csv[..]).unwrap(), empty, "{}", String::from_utf8_lossy(&csv));
+    let mut rows = empty.clone();
+    rows.push(Vec::new());
+    rows.push(Vec::new());
+    let err = rows.write_csv(Vec::new()).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+    assert!(err.to_string().contains("2 rows and no columns"), "{err}");
+    // One column named `""` is not the same table, and reads back as itself.
+    let mut one = Table::new(vec![String::new()]);
+    one.push(vec![1.0]);
+    let mut csv = Vec::new();
+    one.write_csv(&mut csv).unwrap();
+    assert_eq!(Table::read_csv(&csv[..]).unwrap(), one);
+}
