@@ -102,3 +102,26 @@ fn a_state_of_other_sizes_is_refused_naming_the_row() {
     let deep = json.replace("[[[0.3]],[[0.4]]]", "[[[0.3]],[[0.4,0.8]]]");
     assert!(error(&deep).contains("`d2q[1][0]` has 2 entries where the mechanism has 1"), "{}", error(&deep));
 }
+
+/// JSON writes NaN and the infinities as `null`: a table holding them (a synthesis report's
+/// table has NaN where a value was not asked) reads back, `null` as NaN, where it was an
+/// error ("invalid type: null, expected f64"). Whole numbers written by hand read as well.
+#[test]
+fn a_table_with_nan_reads_back_from_json() {
+    let mut t = Table::new(vec!["valid".into(), "min_transmission".into()]);
+    t.push(vec![1.0, f64::NAN]);
+    t.push(vec![0.0, f64::INFINITY]);
+    t.push(vec![-0.0, 0.1 + 0.2]);
+    let json = serde_json::to_string(&t).unwrap();
+    assert!(json.contains("[1.0,null]"), "{json}");
+    let back: Table = serde_json::from_str(&json).unwrap();
+    assert_eq!(back.columns, t.columns);
+    let expected = [1.0, f64::NAN, 0.0, f64::NAN, -0.0, 0.1 + 0.2];
+    for (read, want) in back.rows.iter().flatten().zip(expected) {
+        assert!(read.to_bits() == want.to_bits() || (read.is_nan() && want.is_nan()), "{read} vs {want}");
+    }
+    let by_hand: Table = serde_json::from_str(r#"{"columns":["n"],"rows":[[3],[-2]]}"#).unwrap();
+    assert_eq!(by_hand.column("n"), Some(vec![3.0, -2.0]));
+    let err = serde_json::from_str::<Table>(r#"{"columns":["n"],"rows":[["x"]]}"#).unwrap_err().to_string();
+    assert!(err.contains("expected a number, or null for NaN"), "{err}");
+}
