@@ -1214,3 +1214,30 @@ fn a_mechanism_of_subnormal_lengths_is_refused_as_too_small() {
         }
     }
 }
+
+/// A four-bar whose coupler and rocker together fall short of the frame pivot at every input
+/// (crank 1, frame 3: the crank's end is 2 to 4 from the rocker's pivot, the coupler and rocker
+/// reach 1.51) cannot be assembled at any size. Its dyad's coefficients are products of two
+/// lengths: with one link short (0.01) the first two are small and the third, `(c² - b² -
+/// |e|²) / 2`, is about `-3 k²`, whose square overflows near `k = 1e77` though theirs do not.
+/// There it was taken for a limit position (both sides of the tolerance test infinite) and a
+/// position returned; in closed form it is no assembly at every size, as Newton's twin says.
+#[test]
+fn a_four_bar_whose_links_cannot_reach_fails_where_a_coefficient_squared_overflows() {
+    use kinloop::Error;
+    let cfg = NewtonConfig::default();
+    for (b, c) in [(0.01, 1.5), (1.5, 0.01)] {
+        for k in [1.0, 1e-77, 1e77, 1.2e77, 1e100] {
+            let m = FourBar { a: k, b: b * k, c: c * k, d: 3.0 * k };
+            let twin = FourBarNewton { a: k, b: b * k, c: c * k, d: 3.0 * k };
+            for x in [[0.3], [2.0]] {
+                let closed = m.position_flat(&x, &m.guess_flat(&x), &cfg).map(|(q, _)| q);
+                let newton = twin.position_flat(&x, &twin.guess_flat(&x), &cfg).map(|(q, _)| q);
+                for (solver, got) in [("closed form", closed), ("Newton", newton)] {
+                    let e = got.expect_err(&format!("{solver}, b {b}, c {c}, size {k:e}, phi {x:?}: assembled"));
+                    assert!(matches!(e, Error::NoAssembly { .. }), "{solver}, size {k:e}: {e:?}");
+                }
+            }
+        }
+    }
+}

@@ -308,12 +308,27 @@ fn folded_off_range(
 /// the failure of [`no_root`]. Without it whether a mechanism designed to touch its limit
 /// assembles there would depend on the rounding of its dimensions, that is on its units
 /// (`0.1 + 0.2 > 0.3` in metres, `100 + 200 = 300` in millimetres).
+///
+/// Where `c²` overflows (a finite `c` beyond about `1.3e154`, with `r2` still finite: a dyad's
+/// coefficients are products of two lengths, so a mechanism near `1e77` in size), both sides of
+/// `-d2 <= 2 tol c²` are infinite and the test held for any `c`: links falling short by most of
+/// their size were taken for a limit position and given a cosine far beyond 1. There the same
+/// test is made relative to `c²` (see [`short_within`]), which does not overflow.
 #[cold]
 #[inline(never)]
 fn touching(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
+    let c2 = c * c;
+    let within = if c2 == f64::INFINITY && c.is_finite() { short_within(r2, c, tol) } else { -d2 <= 2.0 * tol * c2 };
     // Written so that a NaN fails.
-    if r2 >= f64::MIN_POSITIVE && -d2 <= 2.0 * tol * (c * c) { Ok(0.0) } else { Err(no_root(d2, r2, c, cfg)) }
+    if r2 >= f64::MIN_POSITIVE && within { Ok(0.0) } else { Err(no_root(d2, r2, c, cfg)) }
+}
+
+/// [`touching`]'s test `c² - r2 <= 2 tol c²` divided by `c²`: `(1 - x) (1 + x) <= 2 tol` with
+/// `x = r / |c|` (`r = sqrt(r2)`), every factor of order one, for a `c` whose square overflows.
+fn short_within(r2: f64, c: f64, tol: f64) -> bool {
+    let x = r2.sqrt() / c.abs();
+    (1.0 - x) * (1.0 + x) <= 2.0 * tol
 }
 
 /// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with `h' = -d < 0` (`h = a cos q +
@@ -773,6 +788,52 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// A dyad whose `c²` overflows although `a² + b²` does not (centres `3 s` apart, links
+    /// `0.01 s` and `2 s`: `a ~ 0.03 s²`, `c ~ -2.5 s²`, at `s = 1e77` `c² ~ 6e308`) falls short
+    /// of closing by `0.99 s` at every size: no assembly, with the same gap over its size,
+    /// `0.99 / 5.01`, as at sizes where nothing overflows. It was taken for a limit position
+    /// (`-d2 = inf` within `2 tol c² = inf`) and a position returned. Where the links fall short
+    /// by less than the tolerance allows, the limit position is still found at that size.
+    #[test]
+    fn a_dyad_whose_offset_squared_overflows_is_judged_at_its_size() {
+        let cfg = NewtonConfig::default();
+        let want = 0.99 / 5.01;
+        for s in [1.0, 1e-77, 1e77, 1.2e77] {
+            let (e0, e1, l0, l1) = (3.0 * s, 0.0, 0.01 * s, 2.0 * s);
+            let (a, b) = (l0 * e0, l0 * e1);
+            let c = 0.5 * ((l1 * l1 - l0 * l0) - (e0 * e0 + e1 * e1));
+            let links = [e0, e1, l0 * l0, l1 * l1];
+            let r2 = a * a + b * b;
+            let d2 = dyad_d2(r2 - c * c, r2, links);
+            let results = [
+                dyad_of([a, b, e0, e1, l0 * l0, l1 * l1], c, false, &cfg).map(|(cq, _)| cq),
+                folded_dyad_root_offset(d2, r2, a, b, c, links, false, &cfg),
+                dyad_roots(a, b, c, false, &cfg).map(|(cq, _)| cq),
+                root_offset(r2 - c * c, r2, c, false, &cfg),
+            ];
+            for (i, got) in results.into_iter().enumerate() {
+                match got {
+                    // The coefficients' own residual (`dyad_roots`, `root_offset`) is `|c| - r`
+                    // over `|c| + r`, not the dyad's gap: only its being a failure is compared.
+                    Err(BlockFailure::NoAssembly { residual, .. }) => {
+                        assert!(i >= 2 || (residual - want).abs() <= 1e-15, "size {s:e}: {residual} against {want}")
+                    }
+                    other => panic!("size {s:e}, result {i}: {other:?}"),
+                }
+            }
+        }
+        // `cos q = c / a` with `a` just below `c` (by a relative 1e-13 at size 1; by 8 eps
+        // about the square root of `f64::MAX`, where `c²` overflows and `a²` does not): within
+        // the default tolerance, the limit position `cos q = 1`.
+        let big = f64::MAX.sqrt();
+        let (c_over, a_under) = (big * (1.0 + 4.0 * f64::EPSILON), big * (1.0 - 4.0 * f64::EPSILON));
+        assert!(c_over * c_over == f64::INFINITY && a_under * a_under < f64::MAX);
+        for (c, a) in [(1.0, 1.0 - 1e-13), (c_over, a_under)] {
+            let (cq, sq) = dyad_roots(a, 0.0, c, false, &cfg).unwrap();
+            assert!((cq - 1.0).abs() <= 1e-12 && sq == 0.0, "{c:e}: {cq} {sq}");
         }
     }
 
