@@ -1241,3 +1241,30 @@ fn a_four_bar_whose_links_cannot_reach_fails_where_a_coefficient_squared_overflo
         }
     }
 }
+
+/// A four-bar near its change point (frame `1 + 1e-8` of the crank, coupler and rocker twice
+/// it) at a crank angle of 0, regular there (its analogs' pivot ratio about `5e-9`, above
+/// `singular_tol`), has its kinematics at every size: between about `1e154` and `1e157` the
+/// product of its analog block's column magnitudes overflowed while the determinant did not,
+/// and the block was reported singular with pivot ratio 0 at those sizes alone. The reference
+/// is the state at size 1, scaled: angles and angle analogs the same.
+#[test]
+fn a_four_bar_near_its_change_point_has_its_kinematics_at_every_size() {
+    let cfg = NewtonConfig::default();
+    let at = |k: f64| {
+        let m = FourBar { a: k, b: 2.0 * k, c: 2.0 * k, d: (1.0 + 1e-8) * k };
+        m.kinematics_flat(&[0.0], &m.guess_flat(&[0.0]), &cfg)
+    };
+    let unit = at(1.0).expect("regular at size 1");
+    for k in [1e150, 1e154, 2e154, 1e155, 1e156, 1e157, 1e158] {
+        let got = at(k).unwrap_or_else(|e| panic!("size {k:e}: {e}"));
+        for u in 0..2 {
+            // The position's conditioning (pivot ratio 5e-9) amplifies the roundings of the
+            // scaled lengths: 1e-6 relative leaves room for that, far below a branch's distance.
+            let (q0, q) = (unit.q[u], got.q[u]);
+            assert!((q - q0).abs() <= 1e-6 * q0.abs().max(1.0), "size {k:e}, q{u}: {q} against {q0}");
+            let (v0, v) = (unit.dq[u][0], got.dq[u][0]);
+            assert!((v - v0).abs() <= 1e-6 * v0.abs().max(1.0), "size {k:e}, dq{u}: {v} against {v0}");
+        }
+    }
+}

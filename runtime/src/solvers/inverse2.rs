@@ -98,11 +98,15 @@ impl Inverse2 {
         // Without entries beyond the block or a floor, the first column's magnitude is `top`:
         // its pivot is 1 (or NaN, which the second shares: no division for it).
         let p0 = if K == 0 && floor[0].is_none() { 1.0 } else { top / m[0] };
-        let p1 = det.abs() / (top * m[1]);
+        let tm = top * m[1];
+        let p1 = det.abs() / tm;
         let smaller = if p1 < p0 { p1 } else { p0 };
         // A NaN or infinite pivot, or a NaN or infinite entry beyond the block, or a determinant
-        // whose reciprocal is not finite, fails the test however the selections went.
-        if p0 + p1 + 0.0 * (sum + id) < f64::INFINITY {
+        // whose reciprocal is not finite, fails the test however the selections went; so does a
+        // product `tm` of the magnitudes that overflows where the determinant does not (a
+        // regular block near a singular position with entries about `1e154`: `p1` came out 0, a
+        // finite pivot, and the block was reported singular at that size alone).
+        if p0 + p1 + 0.0 * (sum + id + tm) < f64::INFINITY {
             Ok(Inverse2 {
                 diag: [d * id, a * id],
                 off: [b * id, c * id],
@@ -201,6 +205,27 @@ mod tests {
     /// The general factorisation equilibrated by the columns' largest magnitudes.
     fn general<const M: usize>(j: &[[f64; 2]; 2], cols: [[f64; M]; 2]) -> Lu<2> {
         Lu::<2>::factor_cols(j, [max_abs(cols[0]), max_abs(cols[1])])
+    }
+
+    /// A regular block near a singular position, its entries about `s`: the pivot ratio is the
+    /// same at every size, also where the product of the magnitudes in the second pivot's
+    /// denominator overflows while the determinant's products do not (rows `1.5 (s, s)` and
+    /// `(s, (1 + 1e-8) s)` at `s` about `1e154`: `(1.5 s)² = 2.25e308`, `1.5 s² = 1.5e308`). It
+    /// came out 0 there, a regular block reported singular at those sizes alone. The reference
+    /// is the unit block's ratio in exact arithmetic, `|det| / (max|col 0| max|col 1|)` =
+    /// `1.5e-8 / 2.25`, to the rounding of `1 + 1e-8` (1e-8 of it).
+    #[test]
+    fn a_regular_block_has_its_pivot_ratio_at_every_size() {
+        let want = 1.5e-8 / 2.25;
+        for s in [1.0, 1e150, 1e154, 1.05e154, 1e155, 1e-154, 1e-160] {
+            let j = [[1.5 * s, 1.5 * s], [s, (1.0 + 1e-8) * s]];
+            let inv = Inverse2::in_cols(&j, [[], []]);
+            let got = inv.pivot_ratio();
+            assert!((got - want).abs() <= 1e-7 * want, "size {s:e}: pivot ratio {got:e}, want {want:e}");
+            // And the inverse solves the block, to its condition (about 1e8 roundings).
+            let x = inv.solve([1.5 * s, s]);
+            assert!((x[0] - 1.0).abs() < 1e-6 && x[1].abs() < 1e-6, "size {s:e}: {x:?}");
+        }
     }
 
     /// Against the equilibrated LU over random blocks of entries spanning 24 orders of magnitude
