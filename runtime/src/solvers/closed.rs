@@ -755,6 +755,28 @@ mod tests {
         assert!(matches!(dyad_roots(0.0, near, 0.3, false, &exact), Err(BlockFailure::NoAssembly { .. })));
     }
 
+    /// The coefficients of the dyad `|e + l0 c0| = l1` (centres `e` apart, links `l0`, `l1`) as
+    /// a closed-form block gives them: `(a, b) = l0 e`, `c = (l1² - l0² - |e|²) / 2`, with its
+    /// `links` `[e0, e1, l0², l1²]`, `r2 = a² + b²` and the discriminant `d2`.
+    struct Dyad {
+        a: f64,
+        b: f64,
+        c: f64,
+        links: [f64; 4],
+        r2: f64,
+        d2: f64,
+    }
+
+    impl Dyad {
+        fn of([e0, e1]: [f64; 2], l0: f64, l1: f64) -> Self {
+            let (a, b) = (l0 * e0, l0 * e1);
+            let c = 0.5 * ((l1 * l1 - l0 * l0) - (e0 * e0 + e1 * e1));
+            let links = [e0, e1, l0 * l0, l1 * l1];
+            let r2 = a * a + b * b;
+            Dyad { a, b, c, links, r2, d2: dyad_d2(r2 - c * c, r2, links) }
+        }
+    }
+
     /// A dyad that cannot be assembled reports how far its links fall short of closing the
     /// triangle with their centres' offset, over the dyad's size (the three lengths' sum),
     /// whichever path solves it: links 1.5 and 2 on centres 5 apart (1.5 short: 3/17), links
@@ -768,15 +790,9 @@ mod tests {
         let cfg = NewtonConfig::default();
         for ([e0, e1], l0, l1, want) in [([3.0, 4.0], 1.5, 2.0, 3.0 / 17.0), ([-2.0, 0.0], 1.0, 4.0, 1.0 / 7.0)] {
             for k in [1.0, 2f64.powi(100), 2f64.powi(-100), 1e100, 1e-100] {
-                let (e0, e1, l0, l1) = (e0 * k, e1 * k, l0 * k, l1 * k);
-                // `|e + l0 c0| = l1`: `(a, b) = l0 e`, `c = (l1² - l0² - |e|²) / 2`.
-                let (a, b) = (l0 * e0, l0 * e1);
-                let c = 0.5 * ((l1 * l1 - l0 * l0) - (e0 * e0 + e1 * e1));
-                let links = [e0, e1, l0 * l0, l1 * l1];
-                let r2 = a * a + b * b;
-                let d2 = dyad_d2(r2 - c * c, r2, links);
+                let Dyad { a, b, c, links, r2, d2 } = Dyad::of([e0 * k, e1 * k], l0 * k, l1 * k);
                 let results = [
-                    dyad_of([a, b, e0, e1, l0 * l0, l1 * l1], c, false, &cfg).map(|(cq, _)| cq),
+                    dyad_of([a, b, links[0], links[1], links[2], links[3]], c, false, &cfg).map(|(cq, _)| cq),
                     folded_dyad_root_offset(d2, r2, a, b, c, links, false, &cfg),
                 ];
                 for got in results {
@@ -802,14 +818,9 @@ mod tests {
         let cfg = NewtonConfig::default();
         let want = 0.99 / 5.01;
         for s in [1.0, 1e-77, 1e77, 1.2e77] {
-            let (e0, e1, l0, l1) = (3.0 * s, 0.0, 0.01 * s, 2.0 * s);
-            let (a, b) = (l0 * e0, l0 * e1);
-            let c = 0.5 * ((l1 * l1 - l0 * l0) - (e0 * e0 + e1 * e1));
-            let links = [e0, e1, l0 * l0, l1 * l1];
-            let r2 = a * a + b * b;
-            let d2 = dyad_d2(r2 - c * c, r2, links);
+            let Dyad { a, b, c, links, r2, d2 } = Dyad::of([3.0 * s, 0.0], 0.01 * s, 2.0 * s);
             let results = [
-                dyad_of([a, b, e0, e1, l0 * l0, l1 * l1], c, false, &cfg).map(|(cq, _)| cq),
+                dyad_of([a, b, links[0], links[1], links[2], links[3]], c, false, &cfg).map(|(cq, _)| cq),
                 folded_dyad_root_offset(d2, r2, a, b, c, links, false, &cfg),
                 dyad_roots(a, b, c, false, &cfg).map(|(cq, _)| cq),
                 root_offset(r2 - c * c, r2, c, false, &cfg),
