@@ -6,6 +6,7 @@ use super::motion::Motion;
 use super::spec::{Drawing, Item, Pt, Scalar};
 use super::style::Style;
 use super::view::Canvas;
+use crate::plot::series::bounds;
 use kinloop_runtime::drawing::{Description, Drawable, SegmentKind};
 use kinloop_runtime::{Compiled, Mechanism};
 use std::sync::Arc;
@@ -424,12 +425,10 @@ fn coincident(d: &Description, at: &[[f64; 2]]) -> Vec<String> {
 /// from the origin: the frame's constant vectors, and a slider's guide from the origin, may
 /// place the mechanism anywhere.
 fn mechanism_size(d: &Description, at: &[[f64; 2]]) -> f64 {
+    // The longer side of the box around the finite points (0 where it overflows).
     let side = |points: &mut dyn Iterator<Item = &[f64; 2]>| {
-        let (lo, hi) = points.fold(([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]), |(lo, hi), p| {
-            ([lo[0].min(p[0]), lo[1].min(p[1])], [hi[0].max(p[0]), hi[1].max(p[1])])
-        });
-        let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        if side.is_finite() { side } else { 0.0 }
+        let box_side = bounds(points.map(|p| (p[0], p[1]))).map(|(x0, x1, y0, y1)| (x1 - x0).max(y1 - y0));
+        box_side.filter(|s| s.is_finite()).unwrap_or(0.0)
     };
     let moving = side(&mut at.iter().zip(&d.joints).filter(|(_, j)| !j.ground).map(|(p, _)| p));
     let link = d

@@ -91,7 +91,7 @@ pub fn bar_chart_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, 
     let mut yts = Vec::with_capacity(panels.len());
     for p in panels {
         let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
-        let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter())).ok_or_else(what)?;
+        let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter().copied())).ok_or_else(what)?;
         yts.push(Ticks::new(y0.min(0.0), y1.max(0.0), p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03));
     }
     // One left margin for every panel, wide enough for the widest y tick label.

@@ -42,7 +42,7 @@ pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, Plo
         p.check()?;
     }
     let all = panels.iter().flat_map(|p| p.series.iter().flat_map(|s| s.points.iter()).chain(p.marks.iter()));
-    let (x0, x1, _, _) = bounds(all).ok_or_else(|| PlotError::Empty { what: "the figure".into() })?;
+    let (x0, x1, _, _) = bounds(all.copied()).ok_or_else(|| PlotError::Empty { what: "the figure".into() })?;
     let xt = Ticks::new(x0, x1, x.kind.factor(), x.kind.is_angle(), false, 0.0);
     let legend_w = legend::width(panels.iter().flat_map(|p| p.series.iter().map(|s| s.label.as_str())));
     let top = if title.is_empty() { 16.0 } else { 48.0 };
@@ -57,7 +57,8 @@ pub fn panels_svg(title: &str, x: &Axis, panels: &[Panel]) -> Result<String, Plo
     let mut yts = Vec::with_capacity(panels.len());
     for p in panels {
         let what = || PlotError::Empty { what: format!("the panel `{}`", p.axis.name) };
-        let (_, _, y0, y1) = bounds(p.series.iter().flat_map(|s| s.points.iter()).chain(&p.marks)).ok_or_else(what)?;
+        let (_, _, y0, y1) =
+            bounds(p.series.iter().flat_map(|s| s.points.iter()).chain(&p.marks).copied()).ok_or_else(what)?;
         yts.push(Ticks::new(y0, y1, p.axis.kind.factor(), p.axis.kind.is_angle(), true, 0.03));
     }
     // One left margin for every panel, wide enough for the widest y tick label.

@@ -40,7 +40,7 @@ mod frame;
 mod kind;
 mod legend;
 mod lines;
-mod series;
+pub(crate) mod series;
 mod svg;
 pub(crate) mod ticks;
 mod xy;

@@ -112,9 +112,9 @@ impl Panel {
 
 /// The smallest and largest finite coordinates of `points`: `(x0, x1, y0, y1)`; `None` when no
 /// point is finite.
-pub(crate) fn bounds<'p>(points: impl Iterator<Item = &'p (f64, f64)>) -> Option<(f64, f64, f64, f64)> {
+pub(crate) fn bounds(points: impl Iterator<Item = (f64, f64)>) -> Option<(f64, f64, f64, f64)> {
     let mut b: Option<(f64, f64, f64, f64)> = None;
-    for &(x, y) in points.filter(|(x, y)| x.is_finite() && y.is_finite()) {
+    for (x, y) in points.filter(|(x, y)| x.is_finite() && y.is_finite()) {
         b = Some(match b {
             None => (x, x, y, y),
             Some((x0, x1, y0, y1)) => (x0.min(x), x1.max(x), y0.min(y), y1.max(y)),

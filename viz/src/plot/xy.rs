@@ -42,7 +42,7 @@ pub fn xy_chart_svg(
             found: Box::new(s.kind.clone()),
         });
     }
-    let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| s.points.iter()).chain(marks))
+    let (x0, x1, y0, y1) = bounds(series.iter().flat_map(|s| s.points.iter()).chain(marks).copied())
         .ok_or(PlotError::Empty { what: "the figure".into() })?;
     let k = &x.kind;
     // Scaled (see `Ticks`): both axes by one power of two, so the spans, centres and the
