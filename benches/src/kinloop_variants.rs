@@ -166,7 +166,7 @@ impl<M: NamedKinematics> Stepper<4> for KinloopNamed<M> {
     }
 }
 
-/// kinloop's own sweep (`kinloop::Sweep`, `runtime/src/sweep.rs`, default `SweepConfig`) over
+/// kinloop's own sweep (`kinloop::Sweep`, `runtime/src/paths/sweep.rs`, default `SweepConfig`) over
 /// the same turns as the benchmark's [`crate::sweep::Sweep`]: `steps` samples per turn at the
 /// angles `k 2 pi / steps`, `k = 0 .. steps - 1`.
 ///
