@@ -90,7 +90,9 @@ pub struct Health {
     /// divided by its largest entry, except that the column of an angle whose lever is a
     /// variable length (`s @ theta` with `s` an unknown or an input) is divided by at least the
     /// loop's other lengths: a slide passing near its pivot shows as near singular, as its angle
-    /// is only known to about `eps` times their ratio to `s` there.
+    /// is only known to about `eps` times their ratio to `s` there. Infinite where no block
+    /// was factorised (JSON writes it as `null`, which reads back as this infinity).
+    #[cfg_attr(feature = "serde", serde(deserialize_with = "crate::kin_serde::min_pivot"))]
     pub min_pivot: f64,
     /// The block with that smallest pivot ratio.
     pub weakest_block: usize,
@@ -159,8 +161,9 @@ impl<const N: usize, const NI: usize, const NO: usize> KinSink<N, NI, NO> for &m
 /// `d2q[u][i][j] = d2 q_u / d x_i d x_j`.
 ///
 /// With the feature `serde` a state serializes as nested sequences and reads back only into a
-/// mechanism of the same sizes. A non-finite value (`health.min_pivot` is infinite when no block
-/// was factorised) needs a format that holds infinities: JSON writes it as `null`.
+/// mechanism of the same sizes. `health.min_pivot` is infinite when no block was factorised:
+/// JSON writes it as `null`, which reads back as that infinity. Another value that is not
+/// finite needs a format that holds it (JSON writes it as `null`, which does not read back).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
     /// Input values (generalized coordinates), in declaration order.

@@ -125,3 +125,36 @@ fn a_table_with_nan_reads_back_from_json() {
     let err = serde_json::from_str::<Table>(r#"{"columns":["n"],"rows":[["x"]]}"#).unwrap_err().to_string();
     assert!(err.contains("expected a number, or null for NaN"), "{err}");
 }
+
+/// A state none of whose blocks was factorised (every unknown solved in closed form, or none)
+/// has an infinite `health.min_pivot`, which JSON writes as `null`: it reads back as that
+/// infinity, where it was an error ("invalid type: null, expected f64"). A pivot ratio is never
+/// NaN nor negative, so `null` stands for the infinity alone and the round trip is exact.
+#[test]
+fn a_state_with_no_pivot_reads_back_from_json() {
+    use kinloop_runtime::{Health, Kin, SolveReport};
+    let k = Kin::<1, 1, 0> {
+        x: [0.5],
+        q: [-0.0],
+        dq: [[f64::MIN_POSITIVE / 4.0]],
+        d2q: [[[1e308]]],
+        out: [],
+        dout: [],
+        d2out: [],
+        report: SolveReport::direct(),
+        health: Health::default(),
+    };
+    assert_eq!(k.health.min_pivot, f64::INFINITY);
+    let json = serde_json::to_string(&k).unwrap();
+    assert!(json.contains("\"min_pivot\":null"), "{json}");
+    let back = serde_json::from_str::<Kin<1, 1, 0>>(&json).unwrap_or_else(|e| panic!("{json}: {e}"));
+    assert_eq!(back, k);
+    // Every value to the bit: the sign of the zero, the subnormal, the largest magnitude.
+    assert_eq!(back.q[0].to_bits(), k.q[0].to_bits());
+    assert_eq!(back.dq[0][0].to_bits(), k.dq[0][0].to_bits());
+    // A finite pivot ratio, and one written by hand as a whole number, read as they are.
+    let finite = json.replace("\"min_pivot\":null", "\"min_pivot\":0.25");
+    assert_eq!(serde_json::from_str::<Kin<1, 1, 0>>(&finite).unwrap().health.min_pivot, 0.25);
+    let whole = json.replace("\"min_pivot\":null", "\"min_pivot\":1");
+    assert_eq!(serde_json::from_str::<Kin<1, 1, 0>>(&whole).unwrap().health.min_pivot, 1.0);
+}
