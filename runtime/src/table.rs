@@ -172,17 +172,42 @@ fn no_columns(rows: usize) -> io::Result<()> {
     Err(io::Error::new(io::ErrorKind::InvalidInput, message))
 }
 
-/// An `InvalidData` error naming the first column name of a CSV header that appears twice:
-/// [`Table::column`] would find the first of them alone, the other's values unreachable by name.
+/// The first column name that appears twice in `columns`, with the positions (from 1) of its
+/// first and second appearances: [`Table::column`] would find the first of them alone, the
+/// other's values unreachable by name. One pass, with the names seen so far in a map: a
+/// mechanism's table can have thousands of columns (its analogs).
+fn repeated(columns: &[String]) -> Option<(&str, usize, usize)> {
+    let mut seen = std::collections::HashMap::with_capacity(columns.len());
+    columns
+        .iter()
+        .enumerate()
+        .find_map(|(k, name)| seen.insert(name.as_str(), k).map(|j| (name.as_str(), j + 1, k + 1)))
+}
+
+/// An `InvalidData` error naming the first column name of a CSV header that appears twice.
 fn check_distinct(columns: &[String]) -> io::Result<()> {
-    for (k, name) in columns.iter().enumerate() {
-        if let Some(j) = columns[..k].iter().position(|c| c == name) {
-            let message =
-                format!("CSV header: the column name `{name}` appears twice (columns {} and {})", j + 1, k + 1);
-            return Err(io::Error::new(io::ErrorKind::InvalidData, message));
-        }
+    match repeated(columns) {
+        Some((name, j, k)) => Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("CSV header: the column name `{name}` appears twice (columns {j} and {k})"),
+        )),
+        None => Ok(()),
     }
-    Ok(())
+}
+
+/// An `InvalidInput` error naming the first column name of a table to be written that appears
+/// twice: [`Table::read_csv`] refuses such a header, so the file would not read back.
+fn check_distinct_to_write(columns: &[String]) -> io::Result<()> {
+    match repeated(columns) {
+        Some((name, j, k)) => Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "the column name `{name}` appears twice (columns {j} and {k}): a CSV column is found by its name, \
+                 and reading the file back would refuse it"
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 impl Table {
@@ -318,12 +343,14 @@ impl Table {
     /// or `0 < |v| < 1e-5`; names and units read back exactly, and what the header cannot
     /// hold, a unit containing ` [` or a name beginning with white space, is an `InvalidInput`
     /// error, as is a table of rows but no columns, whose rows CSV cannot hold; a table of no
-    /// columns and no rows is written as nothing). Names that appear twice are written, but
-    /// [`Table::read_csv`] refuses them.
+    /// columns and no rows is written as nothing). A column name that appears twice is an
+    /// `InvalidInput` error naming it, before anything is written: [`Table::read_csv`] refuses
+    /// such a header, and what is written reads back.
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
         if self.columns.is_empty() {
             return no_columns(self.rows.len());
         }
+        check_distinct_to_write(&self.columns)?;
         let mut out = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(w);
         let header = self
             .columns

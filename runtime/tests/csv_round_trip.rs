@@ -151,3 +151,27 @@ fn a_table_of_no_columns_round_trips_or_is_refused() {
     one.write_csv(&mut csv).unwrap();
     assert_eq!(Table::read_csv(&csv[..]).unwrap(), one);
 }
+
+/// What is written reads back: a table naming a column twice (a command's own column and a
+/// mechanism's input of the same name, `t` beside the time `t`) is refused when written, as
+/// `read_csv` refuses its header, naming the name and both columns. It was written, and the
+/// file could not be read back, nor a column of it told from the other by name.
+#[test]
+fn a_column_name_that_appears_twice_is_refused_when_written() {
+    let mut t = Table::new(vec!["t".into(), "omega".into(), "t".into()]);
+    t.push(vec![0.0, 150.0, 0.5]);
+    let mut csv = Vec::new();
+    let err = t.write_csv(&mut csv).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+    assert!(err.to_string().contains("the column name `t` appears twice (columns 1 and 3)"), "{err}");
+    // Nothing is written: not a header that cannot be read back.
+    assert!(csv.is_empty(), "{}", String::from_utf8_lossy(&csv));
+    // Names that differ only by their units, or by white space at their end, are distinct and
+    // read back as written.
+    let mut distinct = Table::new(vec!["x".into(), "x ".into(), "x [mm]".into()]);
+    distinct.units = vec!["mm".into(), "mm".into(), String::new()];
+    distinct.push(vec![1.0, 2.0, 3.0]);
+    let mut csv = Vec::new();
+    distinct.write_csv(&mut csv).unwrap();
+    assert_eq!(Table::read_csv(&csv[..]).unwrap(), distinct, "{}", String::from_utf8_lossy(&csv));
+}
