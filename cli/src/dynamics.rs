@@ -67,9 +67,17 @@ pub(crate) fn bad_mass(name: &str, e: &Error) -> String {
     format!("{}; check the parameters it is computed from (--params)", crate::solve::named(name, e))
 }
 
+/// The columns `kinloop dynamics` writes beside the input and its slope `d(J)/d(input)` (which
+/// no input's name can be): an input of one of these names would name two columns alike.
+pub(crate) const CYCLE_COLUMNS: [&str; 8] =
+    ["omega", "eps", "J", "load", "torque", "shaking_x", "shaking_y", "shaking_moment"];
+
 /// The usage error of `kinloop COMMAND` (`dynamics`, `simulate`) on a model that is not a
-/// machine turned by a crank: without declared dynamics, or with other than one angle input.
-pub(crate) fn check_crank(model: &Model, command: &str) -> Result<(), Failed> {
+/// machine turned by a crank: without declared dynamics, or with other than one angle input;
+/// or whose input has the name of one of the command's own `columns`: its table would name two
+/// columns alike, which a CSV reader cannot tell apart (the table's writer refuses it, but only
+/// once the whole run is made).
+pub(crate) fn check_crank(model: &Model, command: &str, columns: &[&str]) -> Result<(), Failed> {
     let name = model.name();
     if !model.has_dynamics() {
         return Err(usage(format!(
@@ -80,6 +88,13 @@ pub(crate) fn check_crank(model: &Model, command: &str) -> Result<(), Failed> {
         return Err(usage(format!(
             "kinloop {command} turns a crank: {name} must have one input, an angle (its inputs: {})",
             model.inputs().join(", ")
+        )));
+    }
+    let input = &model.inputs()[0];
+    if columns.contains(&input.as_str()) {
+        return Err(usage(format!(
+            "kinloop {command} writes a column `{input}` of its own beside the input's: rename the input `{input}` \
+             of {name} in its declaration, or its table would name two columns `{input}`"
         )));
     }
     Ok(())
@@ -94,7 +109,7 @@ fn parse_about(spec: Option<&str>) -> Result<[f64; 2], Failed> {
 /// output and the flywheel sizing to `--flywheel` or standard error.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
-    check_crank(model, "dynamics")?;
+    check_crank(model, "dynamics", &CYCLE_COLUMNS)?;
     if req.samples < 8 {
         return Err(usage(format!("--samples {} is too few: a turn needs at least 8", req.samples)));
     }
@@ -231,8 +246,9 @@ fn cycle_table(cycle: &Cycle, input: &str, start_deg: Option<f64>) -> Table {
     let deg = start_deg.is_some();
     let (angle, a) = if deg { (180.0 / std::f64::consts::PI, "deg") } else { (1.0, "rad") };
     let slope = format!("d(J)/d({input})");
-    let columns = [input, "omega", "eps", "J", &slope, "load", "torque", "shaking_x", "shaking_y", "shaking_moment"];
-    let mut t = Table::new(columns.iter().map(|c| c.to_string()).collect());
+    let [omega, eps, j, rest @ ..] = CYCLE_COLUMNS;
+    let columns = [input, omega, eps, j, &slope].into_iter().chain(rest);
+    let mut t = Table::new(columns.map(String::from).collect());
     // The angles in degrees of the turn's equally spaced samples, from the start as given (the
     // turn's end, a sample past the last one, not written): as `sweep` writes its samples,
     // `5`, not their radians times `180/π`, `5.000000000000001` (a quarter of the default

@@ -29,6 +29,11 @@ use kinloop_runtime::{Error, Number, QuantityKind, Table};
 /// program that chose it. It bounds the time, not the memory: no step is kept.
 pub const MAX_STEPS: usize = 1_000_000;
 
+/// The columns the command writes beside the input's angle: the time and the input's speed
+/// (the table is `t`, the input, `omega`). An input of one of these names would name two
+/// columns alike.
+const COLUMNS: [&str; 2] = ["t", "omega"];
+
 /// What `kinloop simulate` was asked.
 pub struct Request {
     /// The input angle at time 0.
@@ -52,7 +57,7 @@ pub struct Request {
 /// Checks the request against the model, simulates and writes the table to standard output.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
-    check_crank(model, "simulate")?;
+    check_crank(model, "simulate", &COLUMNS)?;
     if req.samples < 2 {
         return Err(usage(format!("--samples {} is too few: the start and the end at least", req.samples)));
     }
@@ -135,7 +140,7 @@ impl<F: Fn(usize) -> f64> Rows<F> {
     /// The table of the time, the input named `input` and its speed, in degrees with `deg`
     /// (`angle` the factor from radians).
     fn new(count: usize, at: F, input: String, deg: bool, angle: f64) -> Self {
-        let table = Table::new(vec!["t".into(), input.clone(), "omega".into()]);
+        let table = Table::new(vec![COLUMNS[0].into(), input.clone(), COLUMNS[1].into()]);
         let unit = if deg { "deg" } else { "rad" };
         Rows { count, at, next: 0, last: None, angle: (angle, unit), input, table }
     }
@@ -305,7 +310,7 @@ mod tests {
     /// streamed: the times from the time reached, each value `Trajectory::at`.
     fn table_of(run: &Trajectory, req: &Request, input: &str, angle: f64) -> Table {
         let a = if req.deg { "deg" } else { "rad" };
-        let mut t = Table::new(vec!["t".into(), input.into(), "omega".into()]);
+        let mut t = Table::new(vec![COLUMNS[0].into(), input.into(), COLUMNS[1].into()]);
         let last = req.samples - 1;
         for k in 0..req.samples {
             let time = if k == last { run.t_end } else { run.t_end * k as f64 / last as f64 };

@@ -417,3 +417,32 @@ fn a_load_not_finite_names_its_angle_in_degrees_with_deg() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("at phi = 1.5707963267948966"), "{err}");
 }
+
+/// An input named as a column the command writes of its own (`omega`, `J`, `shaking_moment`)
+/// is a usage error naming it, before the turn is computed: the table named two columns alike
+/// (`omega [rad],omega [rad]`, the speed's column in the angle's unit), which read back as
+/// neither. Another name is written as the input's column, with its slope's.
+#[test]
+fn an_input_named_as_the_command_s_own_column_is_a_usage_error() {
+    let text = std::fs::read_to_string(shipped("engine.kl")).expect("the shipped engine");
+    let with_input = |input: &str| {
+        let file = std::env::temp_dir().join(format!("kinloop-dynamics-input-{input}-{}.kl", std::process::id()));
+        std::fs::write(&file, text.replace("phi", input)).expect("written");
+        file
+    };
+    for input in ["omega", "J", "shaking_moment"] {
+        let file = with_input(input);
+        let out = kinloop(&["dynamics", &file.display().to_string(), "--speed", "150", "--samples", "8"]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{input}: {stderr}");
+        assert!(out.stdout.is_empty(), "{input}: {}", String::from_utf8_lossy(&out.stdout));
+        assert!(stderr.contains(&format!("rename the input `{input}` of EngineMachine")), "{stderr}");
+        let _ = std::fs::remove_file(&file);
+    }
+    let file = with_input("theta");
+    let (header, rows) = csv(&kinloop(&["dynamics", &file.display().to_string(), "--speed", "150", "--samples", "8"]));
+    assert_eq!((header[0].as_str(), header[1].as_str()), ("theta [rad]", "omega [rad/time unit]"));
+    assert!(header[4].starts_with("d(J)/d(theta) ["), "{header:?}");
+    assert_eq!(rows.len(), 8);
+    let _ = std::fs::remove_file(&file);
+}

@@ -285,3 +285,33 @@ fn a_failure_names_the_input_in_degrees_with_deg() {
     assert!(err.contains("the load `brake` is not finite"), "{err}");
     assert!((angle_in(&err) - 1f64.to_degrees()).abs() < 0.5, "not finite past 57.3 deg: {err}");
 }
+
+/// The shipped engine with its input `phi` named `input`, written to a file of its own.
+fn engine_with_input(input: &str) -> String {
+    let text = std::fs::read_to_string(shipped("engine.kl")).expect("the shipped engine");
+    let file = std::env::temp_dir().join(format!("kinloop-simulate-input-{input}-{}.kl", std::process::id()));
+    std::fs::write(&file, text.replace("phi", input)).expect("written");
+    file.display().to_string()
+}
+
+/// An input named as a column the command writes of its own (the time `t`, the speed
+/// `omega`) is a usage error naming it, before the run: the table named two columns alike
+/// (`t [time unit],t [time unit],omega`, the angle's column in the time's unit), which read
+/// back as neither. Another name is written as the input's column.
+#[test]
+fn an_input_named_as_the_command_s_own_column_is_a_usage_error() {
+    for input in ["t", "omega"] {
+        let file = engine_with_input(input);
+        let out = kinloop(&["simulate", &file, "--speed", "150", "--time", "0.01", "--samples", "3"]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{input}: {stderr}");
+        assert!(out.stdout.is_empty(), "{input}: {}", String::from_utf8_lossy(&out.stdout));
+        assert!(stderr.contains(&format!("rename the input `{input}` of EngineMachine")), "{stderr}");
+        let _ = std::fs::remove_file(&file);
+    }
+    let file = engine_with_input("theta");
+    let (header, rows) = csv(&kinloop(&["simulate", &file, "--speed", "150", "--time", "0.01", "--samples", "3"]));
+    assert_eq!(header, ["t [time unit]", "theta [rad]", "omega [rad/time unit]"]);
+    assert_eq!(rows.len(), 3);
+    let _ = std::fs::remove_file(&file);
+}
