@@ -455,7 +455,10 @@ enum Command {
         /// The seed of the starts' sequence.
         #[arg(long, default_value_t = 0, allow_hyphen_values = true, value_parser = count::seed)]
         seed: u64,
-        /// The number of ranked candidates written.
+        /// The most candidates written (at least 1): the best distinct designs the starts
+        /// reached, valid ones first, each group by increasing RMS error. Fewer are written
+        /// where the starts reached fewer distinct designs (one within a millionth of every
+        /// variable's range of a design ranked before it is the same).
         #[arg(long, default_value_t = 10, allow_hyphen_values = true, value_parser = count::count)]
         keep: usize,
         /// Threads of the search (all cores by default, at most 1024); 1 runs the starts one after

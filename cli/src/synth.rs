@@ -45,7 +45,7 @@ pub struct Request<'a> {
     pub starts: usize,
     /// The seed of the starts.
     pub seed: u64,
-    /// Candidates kept.
+    /// The most candidates written (fewer where the starts reached fewer distinct designs).
     pub keep: usize,
     /// Threads of the search (`None`: all cores; 1: one start after another).
     pub jobs: Option<usize>,

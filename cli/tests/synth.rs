@@ -610,3 +610,24 @@ fn a_seed_is_read_as_a_count() {
         assert!(err.contains(says), "{seed}: {err}");
     }
 }
+
+/// `--keep` bounds the candidates written; it does not set their number: two starts reach two
+/// designs at most, and `--keep 10` writes no more than those (their duplicates dropped). The
+/// help said "the number of ranked candidates written", as if ten rows always came; it says
+/// that fewer are written where the starts reached fewer distinct designs.
+#[test]
+fn keep_bounds_the_candidates_written_and_the_help_says_so() {
+    let targets = timed_targets();
+    let file = shipped("coupler_four_bar.kl");
+    let args = ["synth", &file, "--targets", &targets, "--path", "p", "--deg", "--vary", VARY, "--csv"];
+    let out = kinloop(&[&args[..], &["--starts", "2", "--keep", "10"]].concat());
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let (_, rows) = csv(&out);
+    assert!(!rows.is_empty() && rows.len() <= 2, "{} rows from 2 starts", rows.len());
+    let help = kinloop(&["synth", "--help"]);
+    let help = String::from_utf8_lossy(&help.stdout);
+    // The option's own entry: from its name to the next option's.
+    let entry = help.split("\n      --keep <").nth(1).and_then(|rest| rest.split("\n      --").next());
+    let entry = entry.unwrap_or_else(|| panic!("no --keep entry: {help}"));
+    assert!(entry.contains("The most candidates written") && entry.contains("Fewer are written"), "{entry}");
+}
