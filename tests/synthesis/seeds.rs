@@ -5,11 +5,12 @@
 
 use super::mechanisms::{FunctionFourBar, PlacedFourBar};
 use kinloop::Vec2;
+use kinloop::analysis::OptimizerStop;
 use kinloop::deg;
 use kinloop::synthesis::classical::{
     BurmesterConfig, FourBar, FunctionMap, Pose, burmester_points, chebyshev_points, freudenstein,
 };
-use kinloop::synthesis::{Design, Origin, Problem, Search, Task};
+use kinloop::synthesis::{Design, LocalConfig, Origin, Problem, Search, Task};
 
 /// The targets are met to rounding: a few hundred roundings of the targets' size.
 const RESIDUAL: f64 = 1e-13;
@@ -63,6 +64,54 @@ fn freudenstein_s_log10_generator_seeds_a_function_generation_problem() {
         let want = log10_reference(name);
         assert!((got - want).abs() <= 1e-13 * want, "{name}: {got} vs {want}");
     }
+}
+
+/// Freudenstein's `log10` generator over seven evenly spaced points (x = 1, 7/6, ..., 2) has no
+/// exact design: a least-squares problem, whose optimum was never checked against another
+/// solver. The reference is Gauss-Newton at 40 digits on the output angle in closed form
+/// (`psi = arg(P) + acos((|P|^2 + c^2 - b^2) / 2c|P|)`, `P = a e^{i phi} - 1`, the assembly
+/// mode of the seed), stopped where the gradient `J^T r` is below 1e-24: links `a`, `b`, `c`
+/// and the residual norm below.
+///
+/// Tolerances: the optimum is flat, `f(z + dz) - f = |J dz|^2 / 2f` to second order, and the
+/// local solve accepts a step only where the computed `f` falls, which it resolves to about
+/// `df = 1e-16` (each target's angle is solved to a rounding or so of a radian): the lengths
+/// are determined to about `sqrt(2 f df) / s_min` (singular values of `J` 1.2, 0.26 and 0.030
+/// at the optimum: 5.6e-8 along the flattest direction, 3e-8 of the coupler), so `1e-7`
+/// relative (found: 1.0e-8 from these starts, 4e-11 from others). The residual norm is second
+/// order in that error and its angles are solved to about `df`: `1e-12` relative (found:
+/// 4e-14).
+#[test]
+fn a_least_squares_function_generator_reaches_the_40_digit_optimum() {
+    // 3.394747027066131573537348, 1.901164836277540375190467, 4.713824560449371599491451 and
+    // 0.01446256896423658406871527 to 25 digits, here to the nearest double.
+    const OPTIMUM: [f64; 3] = [3.3947470270661316, 1.9011648362775404, 4.713824560449372];
+    const NORM: f64 = 0.014462568964236584;
+    let map = FunctionMap::new(f64::log10, 1.0, 2.0, deg(60.0), deg(90.0), deg(90.0), deg(90.0)).unwrap();
+    let seeds = map.precision_points(f64::log10, &chebyshev_points(3, 1.0, 2.0).unwrap()).unwrap();
+    let four_bar = FourBar::from_function_generator(&freudenstein(&seeds).unwrap(), &seeds).unwrap();
+    let xs: Vec<f64> = (0..7).map(|k| 1.0 + k as f64 / 6.0).collect();
+    let points = map.precision_points(f64::log10, &xs).unwrap();
+    let task = Task::function("psi", points.iter().map(|p| (p.phi, p.psi)));
+    let design = Design::new().var("a", 0.5, 8.0).var("b", 0.5, 8.0).var("c", 0.5, 8.0);
+    let problem = Problem::new(FunctionFourBar::default(), &design, &task)
+        .unwrap()
+        .with_guess([four_bar.couplers[0], four_bar.outputs[0]])
+        .unwrap();
+    let seed = vec![four_bar.links.input, four_bar.links.coupler, four_bar.links.output];
+    let report = Search::default().with_seeds(vec![seed]).with_starts(0..8).run(&problem).unwrap();
+    let best = report.best().unwrap();
+    assert_eq!(best.local.stop, OptimizerStop::Converged, "{:?}", best.local);
+    assert!((best.local.residual - NORM).abs() <= 1e-12 * NORM, "residual norm {:e}", best.local.residual);
+    for ((got, want), name) in best.values.iter().zip(OPTIMUM).zip(["a", "b", "c"]) {
+        assert!((got - want).abs() <= 1e-7 * want, "{name}: {got} vs {want}");
+    }
+    // The stop is reported as it happened: out of evaluations, after as many as allowed.
+    let short = Search::default().with_local(LocalConfig::default().with_max_evaluations(3));
+    let start: Vec<f64> = OPTIMUM.iter().zip([1.2, 0.9, 1.1]).map(|(v, f)| v * f).collect();
+    let stopped = short.refine(&problem, &start).unwrap();
+    assert_eq!((stopped.local.stop, stopped.local.evaluations), (OptimizerStop::MaxEvaluations, 3));
+    assert!(stopped.local.residual > NORM, "{:?}", stopped.local);
 }
 
 /// A weight on the output angle of an angle-only task only scales its residuals: the same
