@@ -55,6 +55,38 @@ fn dopri5_matches_closed_forms() {
     assert!(matches!(err, Err(DynamicsError::StepTooSmall { h: 0.0, .. })));
 }
 
+/// Each step's dense output gives, to the last bit, the state the step started from at `t0`
+/// and the state it reached at `t1()` (which the integrator hands over with the step): the
+/// interpolant is exact at both ends, as `DenseStep::at` says. Harmonic oscillators from
+/// starts whose components differ in magnitude and change sign along the way, where `y0 +
+/// (y1 - y0)` rounds off `y1`; and a recorded trajectory read at its end time gives its end.
+#[test]
+fn dense_output_is_exact_at_both_ends_of_every_step() {
+    let cfg = OdeConfig::default().with_tolerances(1e-9, 1e-9);
+    for (y0, t_end) in [([1.0, 0.0], 20.0), ([0.1, 3.0], 7.3), ([1e-3, 2.0], 50.0)] {
+        let mut from = y0;
+        let mut steps = Vec::new();
+        let (t, end) = dopri5(
+            |_, y| Ok([y[1], -y[0]]),
+            0.0,
+            y0,
+            t_end,
+            &cfg,
+            |s, y| {
+                assert_eq!(s.at(s.t0).map(f64::to_bits), from.map(f64::to_bits), "start of the step at {}", s.t0);
+                assert_eq!(s.at(s.t1()).map(f64::to_bits), y.map(f64::to_bits), "end of the step at {}", s.t0);
+                from = *y;
+                steps.push(*s);
+                Ok(false)
+            },
+        )
+        .unwrap();
+        assert!(steps.len() > 100, "{y0:?}: {} steps", steps.len());
+        let run = Trajectory { steps, t_end: t, end };
+        assert_eq!(run.at(t).map(f64::to_bits), end.map(f64::to_bits), "{y0:?}: the trajectory's end");
+    }
+}
+
 /// The kinetic energy at `(phi, omega)`: it needs the solved positions there, on the branch of
 /// the run, reached by a sweep from 0 over one turn plus the final angle modulo a turn (the
 /// drive repeats every turn).
