@@ -24,3 +24,4 @@ mod sweeps;
 mod trace_branch_points;
 mod trace_from_limits;
 mod trace_kinks;
+mod trace_length_input_scales;

@@ -204,7 +204,9 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// A compiled mechanism's [`trace_curve_of`] (through [`Compiled`]).
 ///
 /// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
-/// errors of the first solve at `from`; `Branch` where the continuation cannot proceed (the
+/// errors of the first solve at `from`, but for an analog beyond `f64`'s range (the
+/// acceleration analogs by a length input in a mechanism below about `1e-154` in size), which
+/// the trace does not use; `Branch` where the continuation cannot proceed (the
 /// curve ends or jumps, or branches meet, where no step however short stays on it).
 pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,

@@ -16,7 +16,8 @@ use crate::solvers::newton::NewtonConfig;
 use nalgebra::DVector;
 
 /// The start's positions and path coordinate, and its state where the analogs exist (the
-/// point solve's `Singular` error where they do not).
+/// point solve's error where they do not: `Singular` at a limit position, `Domain` where an
+/// analog left `f64`'s range).
 pub(super) struct Start<K: Kernel> {
     pub q: Q<K>,
     pub sigma: f64,
@@ -45,14 +46,22 @@ pub(super) fn start<K: Kernel>(m: &K, path: &Path<X<K>>, guess: &Q<K>, cfg: &New
                 None => Err(e),
             },
         },
+        // A value the trace does not use left `f64`'s range (the acceleration analogs by a
+        // length input, about `1 / size²`, in a mechanism below about `1e-154` in size): the
+        // positions stand, and the tangent is taken from the Jacobian (see `tangent`).
+        Err(e @ Error::Domain { .. }) => match m.positions(from, guess, cfg) {
+            Ok(q) => Ok(Start { q, sigma: 0.0, analogs: Err(e) }),
+            Err(_) => Err(e),
+        },
         Err(e) => Err(e),
     }
 }
 
-/// The start's unit tangent (scaled coordinates) at `(q, sigma)`: from the analogs, or at a
-/// limit position the null vector of `[J, dF/dsigma]`, where that has full rank. At a branch
-/// point (two curves through the start: the ratio of that matrix's smallest singular value to
-/// its largest below `branch_ratio`) the point solve's error.
+/// The start's unit tangent (scaled coordinates) at `(q, sigma)`: from the analogs, or where
+/// they are not to be had (a limit position, or an analog beyond `f64`'s range) the null
+/// vector of `[J, dF/dsigma]`, where that has full rank. At a branch point (two curves through
+/// the start: the ratio of that matrix's smallest singular value to its largest below
+/// `branch_ratio`), or where the Jacobian is not finite, the point solve's error.
 pub(super) fn tangent<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
