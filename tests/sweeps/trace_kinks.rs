@@ -86,6 +86,53 @@ fn the_abs_slider_is_traced_across_its_kink_at_every_scale() {
     assert!(t.points.iter().all(|p| (p.q[0] - 2.0 * (p.x[0] - 1.0).abs()).abs() <= ON_LAW * 2.0));
 }
 
+kinloop::mechanism! {
+    /// A lever `r` tilted by a slider's travel `x` through a corner: `sin(th) = |x - r| / (2 r)`,
+    /// its slope `d th / dx` (about `1 / r`) jumping at `x = r`.
+    pub struct TiltedByTravel {
+        params r;
+        input x;
+        unknowns th = 0.3;
+        eq tilt: r * sin(th) == 0.5 * abs(x - r);
+    }
+}
+
+/// The kink is located at its corner at every size: the abs slider's (a length, its slopes
+/// about the size) from `2e-300` to `2e300`, and the tilted lever's (an angle by a length input,
+/// its slopes about the reciprocal of the size) up to `1e300`. The bisection that locates the
+/// corner told its sides by the product of two slopes, which underflowed to zero below about
+/// `1e-154` (the slider) or above `1e154` (the lever): every state was taken for the near
+/// side, and the corner listed at the end of the step across it, about 1e-7 of the input past
+/// it (8e-8 for the slider at `2e-300`). (The lever below `1e-154` is not traced: its
+/// acceleration analogs, about `1 / size^2`, leave `f64`, and the state at the corner with them.)
+#[test]
+fn a_kink_is_located_at_its_corner_at_every_size() {
+    for k in [2e-300, 2e-160, 2e160, 2e300] {
+        let m = Kinked { k };
+        let t = m.trace_curve(0.0, 2.0, &m.guess(0.0), &TraceConfig::default()).unwrap();
+        assert_eq!(t.kinks.len(), 1, "k = {k:e}: {:?}", t.kinks);
+        assert!((t.kinks[0].x[0] - 1.0).abs() <= AT_CORNER, "k = {k:e}: the kink at {}", t.kinks[0].x[0]);
+        for p in &t.points {
+            let phi = p.x[0];
+            assert!((p.q[0] - k * (phi - 1.0).abs()).abs() <= ON_LAW * k, "k = {k:e}: s({phi}) = {:e}", p.q[0]);
+        }
+    }
+    for r in [1.0, 1e160, 1e300] {
+        let m = TiltedByTravel { r };
+        let x0 = 0.2 * r;
+        let g = m.position(x0, &m.guess(x0)).unwrap().0;
+        let t = m.trace_curve(x0, 1.8 * r, &g, &TraceConfig::default()).unwrap();
+        assert_eq!(t.kinks.len(), 1, "r = {r:e}: {:?}", t.kinks);
+        let corner = t.kinks[0].x[0] / r;
+        assert!((corner - 1.0).abs() <= AT_CORNER, "r = {r:e}: the kink at {corner} of r");
+        for p in &t.points {
+            let x = p.x[0] / r;
+            let off = p.q[0].sin() - 0.5 * (x - 1.0).abs();
+            assert!(off.abs() <= tol::SOLVE, "r = {r:e}: sin(th) at {x} of r off the law by {off:e}");
+        }
+    }
+}
+
 #[test]
 fn a_uniform_velocity_cam_law_is_traced_through_its_four_kinks() {
     let m = UniformRise { h: 12.0, a: 0.5, b: 1.2, c: 1.0 };

@@ -134,7 +134,7 @@ pub(crate) fn past_kink<K: Kernel>(
             return None;
         }
     }
-    let (sigma, corner) = locate(m, path, p.sigma, h, &before, &after, regular, solve)?;
+    let (sigma, corner) = locate(m, path, (p.sigma, h), (&before, &after), unit, regular, solve)?;
     let mut tangent = tangent_from_analogs(&corner, path, metric);
     tangent *= dir;
     let mut q = p.q.clone();
@@ -153,24 +153,30 @@ pub(crate) fn past_kink<K: Kernel>(
 /// The corner between `before` (at `sigma0`) and `after` (at `sigma0 + h`), by bisection on the
 /// side whose slopes a state solved in between has (one side's or the other's, as the probes
 /// found): the path coordinate of the first state found on the far side, within rounding of the
-/// corner, and that state.
-#[allow(clippy::too_many_arguments)]
+/// corner, and that state. `unit(u)` is unknown `u`'s unit (see [`Metric`]).
 fn locate<K: Kernel>(
     m: &K,
     path: &Path<X<K>>,
-    sigma0: f64,
-    h: f64,
-    before: &KinOf<K>,
-    after: &KinOf<K>,
+    (sigma0, h): (f64, f64),
+    (before, after): (&KinOf<K>, &KinOf<K>),
+    unit: impl Fn(usize) -> f64,
     regular: impl Fn(&KinOf<K>) -> bool,
     solve: impl Fn(f64, &Q<K>) -> Option<KinOf<K>>,
 ) -> Option<(f64, KinOf<K>)> {
-    // The unknown whose slope jumps most tells the sides apart (its jump is at least
-    // `kink::MIN_JUMP` of the steeper slope; the probes put every slope within
+    // The unknown whose slope jumps most, in its unit (an angle's and a length's slopes compared
+    // as they were, their order changed with the unit of length), tells the sides apart (its
+    // jump is at least `kink::MIN_JUMP` of the steeper slope; the probes put every slope within
     // `kink::ONE_SIDED` of it from one side).
     let jump = |u: usize| slope(after, path, u) - slope(before, path, u);
-    let u = m.judged().iter().copied().max_by(|&a, &b| jump(a).abs().total_cmp(&jump(b).abs()))?;
+    let scaled = |u: usize| (jump(u) / unit(u)).abs();
+    let u = m.judged().iter().copied().max_by(|&a, &b| scaled(a).total_cmp(&scaled(b)))?;
     let middle = 0.5 * (slope(after, path, u) + slope(before, path, u));
+    // The side of a slope by its sign against the jump's: their product, in the slopes' own
+    // units, is the square of a size's reciprocal or of a size, and underflowed to zero for a
+    // mechanism below about `1e-154` in size (a length's slopes) or above `1e154` (an angle's
+    // by a length input), which put every state on the near side and the corner at the step's
+    // end, up to 1e-7 of the input off.
+    let far_side = |k: &KinOf<K>| (slope(k, path, u) - middle) * jump(u).signum() > 0.0;
     let (mut lo, mut hi, mut far) = (0.0f64, 1.0f64, after.clone());
     // Solved from the nearest state found on the far side.
     let mut guess = m.dims().q();
@@ -184,7 +190,7 @@ fn locate<K: Kernel>(
         if !regular(&k) {
             return None;
         }
-        if (slope(&k, path, u) - middle) * jump(u) > 0.0 {
+        if far_side(&k) {
             hi = mid;
             guess.as_mut().copy_from_slice(k.q());
             far = k;
