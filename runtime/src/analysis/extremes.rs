@@ -348,8 +348,9 @@ pub(crate) fn check_increasing(samples: &[Jet]) -> Result<(), Error> {
 }
 
 /// The maximum of `f` on `[a, b]` by Brent's derivative-free method (golden-section search with
-/// parabolic interpolation), to a relative location tolerance of `sqrt(eps)` (the best possible
-/// for a smooth maximum: the value is then exact to rounding). Returns `(x, f(x))`. For a
+/// parabolic interpolation), to a location tolerance of `sqrt(eps)` of `|x|` or of the width
+/// `b - a`, whichever is smaller (the best possible for a smooth maximum varying over the
+/// interval's width: the value is then exact to rounding, wherever the interval lies). Returns `(x, f(x))`. For a
 /// unimodal `f` on the interval this is the maximum; otherwise a local one. Use it to locate the
 /// peak of a quantity whose derivative is not available, starting from the best sample and its
 /// neighbours.
@@ -374,6 +375,13 @@ pub fn maximize(a: f64, b: f64, mut f: impl FnMut(f64) -> Result<f64, Error>) ->
     // 1973, ch. 5).
     let golden = 0.5 * (3.0 - 5f64.sqrt());
     let tol = f64::EPSILON.sqrt();
+    // The location tolerance is relative to `|x|`, as Brent's, but never to more than the
+    // interval's width: a maximum's value tells its location apart only to about `sqrt(eps)`
+    // of the scale over which `f` varies, which the width of a bracket around it tells and the
+    // distance of the interval from 0 does not (the same peak 1e6 widths from 0 was located
+    // to 5e-4 of its width, its value to 1e-7). Two units of rounding of `x` keep each trial
+    // point apart from `x`.
+    let width = b - a;
     let (mut a, mut b) = (a, b);
     let mut x = a + golden * (b - a);
     let (mut w, mut v) = (x, x);
@@ -387,7 +395,8 @@ pub fn maximize(a: f64, b: f64, mut f: impl FnMut(f64) -> Result<f64, Error>) ->
     let (mut d, mut e) = (0.0f64, 0.0f64);
     for _ in 0..200 {
         let m = 0.5 * (a + b);
-        let tol1 = tol * x.abs() + 1e-12 * (b - a).abs().max(f64::MIN_POSITIVE);
+        let tol1 =
+            tol * x.abs().min(width) + 2.0 * f64::EPSILON * x.abs() + 1e-12 * (b - a).abs().max(f64::MIN_POSITIVE);
         let tol2 = 2.0 * tol1;
         if (x - m).abs() <= tol2 - 0.5 * (b - a) {
             break;
@@ -601,5 +610,23 @@ mod tests {
         // A maximum at the end of the interval is approached to within the tolerance.
         let (x, _) = maximize(0.0, 1.0, Ok).unwrap();
         assert!(x > 1.0 - 1e-7);
+    }
+
+    /// A peak is located to `sqrt(eps)` of the interval's width wherever the interval lies: the
+    /// tolerance, relative to `|x|` alone, located `cos((x - c) / w)` on `[c - 1.3 w, c + 1.7 w]`
+    /// with `c` 1e6 widths from 0 to 4.7e-4 of its width, its value 1 to 1.1e-7 (100 widths
+    /// from 0: to 5.4e-7 and 1.5e-13), in any unit.
+    #[test]
+    fn maximize_locates_a_peak_far_from_zero_as_near_it() {
+        for offset in [0.0, 1e2, 1e4, 1e6, 1e8] {
+            for w in [1e-6, 1.0, 1e6] {
+                let c = (offset + 0.3) * w;
+                let (x, v) = maximize(c - 1.3 * w, c + 1.7 * w, |x| Ok(((x - c) / w).cos())).unwrap();
+                // Brent's bracket closes to about 2 sqrt(eps) (3.3e-8) of the width 3 w, and the
+                // value's error is half the square of the location's, below rounding.
+                assert!(((x - c) / w).abs() < 1e-7, "offset {offset:e}, w {w:e}: x = {x}, c = {c}");
+                assert!(1.0 - v < 1e-14, "offset {offset:e}, w {w:e}: 1 - v = {:e}", 1.0 - v);
+            }
+        }
     }
 }
