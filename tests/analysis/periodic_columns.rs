@@ -158,3 +158,42 @@ fn a_ratio_that_stands_still_is_periodic() {
         assert!(matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("no net travel")), "scale {s}: {r:?}");
     }
 }
+
+kinloop::mechanism! {
+    /// The centred slider-crank of [`SliderPin`] with the squared length of its rod from the
+    /// crank pin `r @ phi` to the slider's pin `(x, 0)`: an area (length squared), whose kind
+    /// kinloop does not infer, equal to `l^2` in exact arithmetic at every crank angle.
+    pub struct SliderRodSquared {
+        params r, l;
+        input phi;
+        unknowns psi = 0, x = -l;
+        loop oabo: r @ phi == (x, 0) + l @ psi;
+        output ll = (x - r * cos(phi)) * (x - r * cos(phi)) + r * sin(phi) * r * sin(phi);
+    }
+}
+
+/// A column of a kind not inferred (an area) that is constant in exact arithmetic has no
+/// extremes and no net travel, at every scale: its rounding, some 1e-16 of its own size, was
+/// judged against nothing (exactly equal values only), and the sign changes of its analog were
+/// 28 "extremes" a turn (at scale 1) at crank angles the rounding chose, as
+/// [`a_column_that_stands_still_has_no_extremes`] saw of an angle's. Judged against its own
+/// size (as `fourier` judges its return to its start), it stands still.
+#[test]
+fn a_column_of_unknown_kind_that_stands_still_has_no_extremes() {
+    for s in SCALES {
+        let m = SliderRodSquared { r: s, l: 3.0 * s };
+        let turn = Sampled::sweep(&m, 0.1, 0.1 + TAU, 73, [0.0, -3.9 * s]).unwrap();
+        let jets = turn.jets(SliderRodSquared::COL.ll).unwrap();
+        // The exact value is l^2 = 9 s^2: the samples are within a solve's rounding (1e-12 of
+        // the lengths squared) of it.
+        assert!(jets.iter().all(|j| (j.value - 9.0 * s * s).abs() < 1e-12 * s * s), "scale {s}: {jets:?}");
+        assert_eq!(turn.extremes(SliderRodSquared::COL.ll).unwrap(), [], "scale {s}");
+        let r = turn.range(SliderRodSquared::COL.ll).unwrap();
+        assert!(r.extremes.is_empty() && r.span() < 1e-12 * s * s, "scale {s}: {r:?}");
+        let run = Sampled::sweep(&m, 0.1, 0.1 + 0.9 * TAU, 65, [0.0, -3.9 * s]).unwrap();
+        let r = run.dwells(SliderRodSquared::COL.ll);
+        assert!(matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("no net travel")), "scale {s}: {r:?}");
+        // The slider's own position keeps its dead centres.
+        assert_eq!(turn.extremes(SliderRodSquared::COL.x).unwrap().len(), 2, "scale {s}");
+    }
+}

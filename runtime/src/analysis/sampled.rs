@@ -711,17 +711,17 @@ impl<K: Kernel> SampledOf<K> {
     }
 
     /// Whether a column stands still over a search's points (`jets`, and the `corners` at the
-    /// crossings among them): all its values within the rounding of what it is computed from
-    /// ([`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of `pi` for an angle, of the
-    /// mechanism's largest length for a length, of 1 for a pure number; exactly equal
-    /// otherwise). Its velocity analog is
-    /// then rounding too, and the sign changes of that noise are no extremes: a parallelogram's
-    /// coupler angle, zero at every crank angle, had thirty "extremes" a turn, at crank angles
-    /// the rounding chose.
+    /// crossings among them): all its values within its rounding, the
+    /// [`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of its natural scale (see
+    /// [`SampledOf::natural_scale`]: its own size, and at least `pi` for an angle, the
+    /// mechanism's largest length for a length, 1 for a pure number), as its return to its
+    /// start is judged. Its velocity analog is then rounding too, and the sign changes of that
+    /// noise are no extremes: a parallelogram's coupler angle, zero at every crank angle, had
+    /// thirty "extremes" a turn, at crank angles the rounding chose.
     fn stands_still(&self, c: ColumnIndex, jets: &[Jet], corners: &[extremes::Corner]) -> bool {
-        let values = jets.iter().chain(corners.iter().map(|k| &k.at)).map(|j| j.value);
-        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        hi - lo <= unbalance::PERIODIC_TOLERANCE * self.kind_scale(c)
+        let values = || jets.iter().chain(corners.iter().map(|k| &k.at)).map(|j| j.value);
+        let (lo, hi) = values().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        hi - lo <= unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, values())
     }
 
     /// Column `c` as a search between the samples sees it ([`SampledOf::extremes`]), handed to
@@ -786,8 +786,11 @@ impl<K: Kernel> SampledOf<K> {
         // A column that stands still in exact arithmetic moves by its rounding alone, whose
         // travel against its range (rounding too) decided whether it was progressive: judged
         // as its return to its start is (see `periodic`), it has no net travel.
-        let still = unbalance::PERIODIC_TOLERANCE * self.kind_scale(c);
-        self.searched(c, |jets, corners, eval| dwell::dwells_across(jets, corners, eval, still))
+        self.searched(c, |jets, corners, eval| {
+            let values = jets.iter().chain(corners.iter().map(|k| &k.at)).map(|j| j.value);
+            let still = unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, values);
+            dwell::dwells_across(jets, corners, eval, still)
+        })
     }
 
     /// The rests of a column: where it stands exactly still (its velocity analog exactly zero
@@ -870,7 +873,7 @@ impl<K: Kernel> SampledOf<K> {
         let mut jets = self.jets_of(c);
         self.on_grid(c, &mut jets)?;
         let (a, b) = (jets[0].value, jets[jets.len() - 1].value);
-        if (a - b).abs() > unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, &jets) {
+        if (a - b).abs() > unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, jets.iter().map(|j| j.value)) {
             return Err(Error::InvalidArgument(format!(
                 "`{}` is not periodic over the sweep ({a} at the start, {b} at the end): sweep exactly one cycle",
                 column_name(&self.k, c)
@@ -928,10 +931,11 @@ impl<K: Kernel> SampledOf<K> {
     ///   absolute too, a few ulps of the sines and ratios of size one it is computed from, in
     ///   any unit of length (a ratio that is zero in exact arithmetic, the height of a centred
     ///   slider's pin over its rod, was rounding judged against itself: "not periodic");
-    /// * anything else (a time, a quantity whose kind is not inferred): its own size alone;
-    ///   kinloop does not know what it is computed from.
-    fn natural_scale(&self, c: ColumnIndex, jets: &[Jet]) -> f64 {
-        let own = jets.iter().map(|j| j.value.abs()).fold(0.0, f64::max);
+    /// * anything else (a time, a quantity whose kind is not inferred, an area): its own size
+    ///   alone; kinloop does not know what it is computed from (one that is zero in exact
+    ///   arithmetic is rounding judged against itself, and does not stand still).
+    fn natural_scale(&self, c: ColumnIndex, values: impl Iterator<Item = f64>) -> f64 {
+        let own = values.map(f64::abs).fold(0.0, f64::max);
         own.max(self.kind_scale(c))
     }
 
@@ -982,7 +986,7 @@ impl<K: Kernel> SampledOf<K> {
     pub fn unbalance(&self, c: impl ColumnOf<K>, removed: usize) -> Result<Unbalance, Error> {
         let c = c.resolve(&self.k)?;
         let jets = self.periodic(c)?;
-        let scale = self.natural_scale(c, &jets);
+        let scale = self.natural_scale(c, jets.iter().map(|j| j.value));
         // The residual's extremes are looked for as `extremes` looks for a column's: across a
         // singular crossing the sweep passed, at the crossing, not by a refinement stepping
         // into its band (which failed the whole call with `NearSingular`).
