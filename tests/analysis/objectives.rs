@@ -139,3 +139,38 @@ fn an_extremum_at_a_singular_crossing_has_no_gradient() {
         }
     }
 }
+
+kinloop::mechanism! {
+    /// A cam law rising at uniform velocity to `h` at `phi = p0` and returning to 0 at a full
+    /// turn: its peak is a corner of the motion (a kink) at `p0`, of value `h`, whatever `p0`.
+    #[kinloop(sensitivities)]
+    pub struct PeakedLaw {
+        params h, p0;
+        input phi;
+        unknowns s = 0;
+        eq law: s == h * min(phi / p0, (6.283185307179586 - phi) / (6.283185307179586 - p0));
+    }
+}
+
+/// A peak at a corner of the motion that falls on a sample has the corner's gradients, as one
+/// between samples has: `d h / d (h, p0) = (1, 0)`, and the corner `phi = p0` moves by `(0, 1)`.
+/// The sample, one side's value, was the largest candidate but no located extreme, and was
+/// taken for an end of the range: one side's `d s / d p0 = -phi h / p0^2` (-0.5 h) came back,
+/// and `x_grad = 0`.
+#[test]
+fn a_peak_at_a_kink_on_a_sample_has_the_corners_gradients() {
+    // (from, to, samples): the corner at 2 is the 21st of 41 samples, the middle one of 3.
+    for (from, to, n) in [(0.0, 4.0, 41), (1.0, 3.0, 3)] {
+        for h in [1e-6, 1.0, 1e6] {
+            let m = PeakedLaw { h, p0: 2.0 };
+            let run = kinloop::analysis::Sampled::sweep(&m, from, to, n, [0.0]).unwrap();
+            assert!(run.path_values().contains(&2.0), "the corner is a sample");
+            let top = run.extremum_with_gradient::<2>(PeakedLaw::COL.s, Extreme::Max).unwrap();
+            assert!(top.x == 2.0 && (top.value - h).abs() < 1e-15 * h, "{n}, h {h}: {top:?}");
+            // The sides are taken a few units of rounding from the corner: their derivatives are
+            // the branches' to about 1e-14 (measured 1e-14), in the units of each derivative.
+            assert!((top.grad[0] - 1.0).abs() < 1e-12 && top.grad[1].abs() < 1e-12 * h, "{n}, h {h}: {top:?}");
+            assert!(top.x_grad[0].abs() < 1e-12 / h && (top.x_grad[1] - 1.0).abs() < 1e-12, "{n}, h {h}: {top:?}");
+        }
+    }
+}

@@ -116,7 +116,13 @@ impl<K: Kernel> SampledOf<K> {
         if self.is_crossing(at.x) {
             return Err(at_crossing(self.kernel(), c, which, at.x));
         }
-        let interior = global.extremes.iter().any(|e| e.at.x == at.x);
+        // Anywhere but an end of the range the extremum moves with the parameters: a root of
+        // the analog, or a corner of the motion. A corner that falls on a sample is no located
+        // extreme (the sample itself, one side's value, is the largest candidate), and taken
+        // for an end it kept one side's gradient and did not move (`x_grad = 0`).
+        let s = self.path_values();
+        let (first, last) = (s[0], s[s.len() - 1]);
+        let interior = at.x > first.min(last) && at.x < first.max(last);
         let state = self.at(at.x)?;
         let mut kin = state.clone();
         sens_at(&state, &mut kin, sens)?;
@@ -267,7 +273,8 @@ where
     ///
     /// An extremum at an end of the range (where the analog does not vanish) is returned at the
     /// end with `x_grad = 0` and `grad = dq/dp` there. An extremum at a corner of the motion (a
-    /// kink: `min`, `max`, `abs` in the declaration, as a uniform-velocity cam law has) moves
+    /// kink: `min`, `max`, `abs` in the declaration, as a uniform-velocity cam law has), between
+    /// samples or on one, moves
     /// with the corner, where the branches on its two sides are equal: `x_grad` and `grad` are
     /// that corner's (the implicit function theorem on `L(x, p) = R(x, p)`), not one side's
     /// `dq/dp`. An extremum at a singular crossing the
