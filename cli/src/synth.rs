@@ -29,6 +29,10 @@ pub const MAX_JOBS: usize = 1024;
 /// with zeros too many would abort on that allocation.
 pub const MAX_STARTS: usize = 1_000_000;
 
+/// The columns `kinloop synth` writes of its own, around the design variables' (`max_error` and
+/// `rms_error` with their unit in the header, `max_error [mm]`, read back as `max_error`).
+const COLUMNS: [&str; 7] = ["rank", "start", "valid", "max_error", "rms_error", "evaluations", "defects"];
+
 /// What `kinloop synth` was asked.
 pub struct Request<'a> {
     /// The CSV file of the targets.
@@ -83,6 +87,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let design = design(req.vary)?;
     not_given_twice(&design, req.params)?;
+    not_a_column(&design, model.name())?;
     // The search sets the design variables at every evaluation, so one without a value needs
     // none of its own; the model's kernel, built before, needs one for every parameter: any
     // within the bounds does.
@@ -175,6 +180,20 @@ fn not_given_twice(design: &Design, params: Option<&str>) -> Result<(), Failed> 
         }
     }
     Ok(())
+}
+
+/// Refuses a design variable named as one of the columns the candidates are written with
+/// beside it: the header would name two columns alike, which a CSV reader finds by name (the
+/// runtime's reader refuses such a header; others take the first). Before the run, not after it.
+fn not_a_column(design: &Design, mechanism: &str) -> Result<(), Failed> {
+    match design.variables().iter().find(|v| COLUMNS.contains(&v.name.as_str())) {
+        Some(v) => Err(exit::usage(format!(
+            "kinloop synth writes a column `{0}` of its own beside the design variables': rename the parameter \
+             `{0}` of {mechanism} in its declaration to vary it, or the candidates would name two columns `{0}`",
+            v.name
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// `lo..hi` as two finite numbers, lower first.
@@ -388,11 +407,12 @@ fn defects(c: &Candidate, u: &Units) -> String {
 /// The columns: rank, start, valid, the design variables, the errors (with their unit, as the
 /// other commands write units: `max_error [deg]`), evaluations, defects.
 fn header(report: &SynthesisReport, u: &Units) -> Vec<String> {
-    let mut h: Vec<String> = ["rank", "start", "valid"].map(String::from).to_vec();
+    let [rank, start, valid, max_error, rms_error, evaluations, defects] = COLUMNS;
+    let mut h: Vec<String> = [rank, start, valid].map(String::from).to_vec();
     h.extend(report.variables.iter().cloned());
     let unit = if u.error_unit.is_empty() { String::new() } else { format!(" [{}]", u.error_unit) };
-    h.extend([format!("max_error{unit}"), format!("rms_error{unit}")]);
-    h.extend(["evaluations", "defects"].map(String::from));
+    h.extend([format!("{max_error}{unit}"), format!("{rms_error}{unit}")]);
+    h.extend([evaluations, defects].map(String::from));
     h
 }
 

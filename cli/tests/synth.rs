@@ -631,3 +631,40 @@ fn keep_bounds_the_candidates_written_and_the_help_says_so() {
     let entry = entry.unwrap_or_else(|| panic!("no --keep entry: {help}"));
     assert!(entry.contains("The most candidates written") && entry.contains("Fewer are written"), "{entry}");
 }
+
+/// The shipped coupler four-bar with its coupler point's distance `e` named `name`, written to
+/// a file of the test's own.
+fn coupler_with_distance(name: &str) -> String {
+    let text = format!(
+        "#[kinloop(sensitivities)]\npub struct CouplerFourBar {{\n    params a = 1.0, b = 3.0, c = 2.5, d = 3.0, \
+         {name} = 1.5, alpha = 0.6;\n    input phi;\n    unknowns beta = 0.5, gamma = 1.5;\n    loop abcd: a @ phi \
+         + b @ beta == (d, 0) + c @ gamma;\n    point p = a @ phi + {name} @ (beta + alpha);\n}}\n"
+    );
+    file(&format!("synth_distance_{name}.kl"), &text)
+}
+
+/// A design variable named as a column the command writes of its own is a usage error naming
+/// it, before the run: the header named two columns alike (`rank,start,valid,...,start,...`),
+/// which a CSV reader finds by name (the runtime's refuses it, others take the first). Another
+/// name is written as the variable's column.
+#[test]
+fn a_design_variable_named_as_the_command_s_own_column_is_a_usage_error() {
+    let targets = timed_targets();
+    let run = |name: &str| {
+        let file = coupler_with_distance(name);
+        let vary = format!("{name}=1.19..2.21");
+        let args = ["synth", file.as_str(), "--targets", targets.as_str(), "--path", "p", "--deg"];
+        kinloop(&[&args[..], &["--vary", vary.as_str(), "--starts", "1", "--csv"]].concat())
+    };
+    for name in ["rank", "start", "valid", "max_error", "rms_error", "evaluations", "defects"] {
+        let out = run(name);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+        assert!(out.stdout.is_empty(), "{name}: {}", String::from_utf8_lossy(&out.stdout));
+        assert!(stderr.contains(&format!("rename the parameter `{name}` of CouplerFourBar")), "{stderr}");
+    }
+    let out = run("offset");
+    assert!(out.status.code() != Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    let (header, _) = csv(&out);
+    assert_eq!(header[..4], ["rank", "start", "valid", "offset"]);
+}
