@@ -113,13 +113,13 @@ fn the_class_is_a_column_of_the_table_and_names_are_checked() {
     let problem = Problem::new(m, &Design::new().var("e", 0.5, 1.5), &task).unwrap();
     let named = problem.clone().with_constraints(&Constraints::default().with_four_bar("d", "a", "b", "c")).unwrap();
     let report = Search::default().with_starts(0..2).run(&named).unwrap();
-    let table = report.table();
+    let table = report.table().unwrap();
     let code = table.column("grashof").unwrap();
     assert_eq!(code[0], f64::from(grashof_code(GrashofClass::CrankRocker)));
     assert!(table.column("min_transmission_range").unwrap()[0] > 0.5);
     // Without the names, no such column.
     let plain = Search::default().with_starts(0..2).run(&problem).unwrap();
-    assert!(plain.table().column("grashof").is_none());
+    assert!(plain.table().unwrap().column("grashof").is_none());
     assert!(plain.best().unwrap().four_bar.is_none());
     // A name that is no parameter, and a link named twice.
     let e = problem.clone().with_constraints(&Constraints::default().with_four_bar("d", "a", "b", "q")).unwrap_err();

@@ -2,7 +2,7 @@
 //! runtime's reader), and the progress of a search.
 
 use super::mechanisms::{Slider, slider_x};
-use kinloop::synthesis::{Design, Problem, Search, Task};
+use kinloop::synthesis::{Design, Problem, Rejections, Search, SynthesisError, SynthesisReport, Task};
 use std::cell::RefCell;
 use std::sync::Mutex;
 
@@ -17,7 +17,7 @@ fn problem() -> Problem<Slider, 2, 1, 0, 3> {
 fn the_table_holds_every_candidate() {
     let report = Search::default().with_starts(0..8).run(&problem()).unwrap();
     let mut csv = Vec::new();
-    report.table().write_csv(&mut csv).unwrap();
+    report.table().unwrap().write_csv(&mut csv).unwrap();
     let mut reader = csv::Reader::from_reader(csv.as_slice());
     let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
     assert_eq!(header, ["start", "valid", "r", "l", "e", "max_error", "rms_error", "min_transmission", "evaluations"]);
@@ -43,4 +43,35 @@ fn progress_counts_every_start() {
     let mut seen = seen.into_inner().unwrap();
     seen.sort();
     assert_eq!(seen, (1..=6).map(|k| (k, 6)).collect::<Vec<_>>());
+}
+
+/// A report of no candidate over the design variables `variables`.
+fn report_of(variables: &[&str]) -> SynthesisReport {
+    SynthesisReport {
+        variables: variables.iter().map(|v| v.to_string()).collect(),
+        bounds: vec![(0.0, 1.0); variables.len()],
+        candidates: Vec::new(),
+        starts: 0..0,
+        seeds: 0,
+        unassembled: 0,
+        converged: 0,
+        valid: 0,
+        rejected: Rejections::default(),
+        evaluations: 0,
+    }
+}
+
+/// A design variable named as a column of the table's own is refused, naming it: the table
+/// named two columns alike, `column` finding the report's alone and `write_csv` refusing it.
+/// A column present only for four-bars with named links (`grashof`) is a name like any other
+/// where there are none.
+#[test]
+fn a_design_variable_named_as_a_column_of_the_table_is_refused() {
+    for name in ["start", "valid", "max_error", "rms_error", "min_transmission", "evaluations"] {
+        let e = report_of(&["r", name]).table().unwrap_err();
+        assert_eq!(e, SynthesisError::ReportColumn { name: name.to_string() });
+        assert!(e.to_string().contains(&format!("the design variable `{name}`")), "{e}");
+    }
+    let table = report_of(&["r", "grashof"]).table().unwrap();
+    assert_eq!(table.columns[..4], ["start", "valid", "r", "grashof"]);
 }

@@ -92,6 +92,17 @@ pub enum SynthesisError {
     /// A configuration value is out of its range (the message names the field).
     #[error("invalid configuration: {0}")]
     InvalidConfig(String),
+    /// A design variable is named as a column of its own of the report's table
+    /// ([`SynthesisReport::table`](super::SynthesisReport::table)): the table would name two
+    /// columns alike.
+    #[error(
+        "the design variable `{name}` is named as a column of the report's table of its own: the table would \
+         name two columns `{name}`; rename the parameter to tabulate the report"
+    )]
+    ReportColumn {
+        /// The variable.
+        name: String,
+    },
     /// A kinematic analysis failed where the problem needs it to succeed.
     #[error("kinematics failed: {0}")]
     Kinematics(#[from] Error),

@@ -1,6 +1,7 @@
 //! The report of a search: the best distinct candidates, ranked, and what happened to the
 //! other starts; merged across parts of a split search; as a table for CSV.
 
+use super::SynthesisError;
 use super::candidate::{Candidate, Defect};
 use crate::metrics::GrashofClass;
 use crate::table::Table;
@@ -115,21 +116,33 @@ impl SynthesisReport {
     /// `min_transmission_range` (radians, over the input's range). Write it with
     /// [`Table::write_csv`] or [`Table::save_csv`].
     ///
+    /// # Errors
+    ///
+    /// [`SynthesisError::ReportColumn`] where a design variable is named as one of those
+    /// columns (a parameter `start`, or `grashof` of four-bars with named links): the table
+    /// would name two columns alike, [`Table::column`] finding the report's alone, and
+    /// [`Table::write_csv`] refuses it.
+    ///
     /// ```
     /// use kinloop_runtime::synthesis::SynthesisReport;
-    /// # fn show(report: &SynthesisReport) -> std::io::Result<()> {
-    /// report.table().write_csv(std::io::stdout())?;
+    /// # fn show(report: &SynthesisReport) -> Result<(), Box<dyn std::error::Error>> {
+    /// report.table()?.write_csv(std::io::stdout())?;
     /// # Ok(())
     /// # }
     /// ```
-    pub fn table(&self) -> Table {
+    pub fn table(&self) -> Result<Table, SynthesisError> {
         let four_bar = self.candidates.iter().any(|c| c.four_bar.is_some());
-        let mut columns = vec!["start".to_string(), "valid".to_string()];
-        columns.extend(self.variables.iter().cloned());
-        columns.extend(["max_error", "rms_error", "min_transmission", "evaluations"].map(String::from));
+        let mut own = vec!["start", "valid", "max_error", "rms_error", "min_transmission", "evaluations"];
         if four_bar {
-            columns.extend(["grashof", "grashof_margin", "min_transmission_range"].map(String::from));
+            own.extend(["grashof", "grashof_margin", "min_transmission_range"]);
         }
+        if let Some(name) = self.variables.iter().find(|v| own.contains(&v.as_str())) {
+            return Err(SynthesisError::ReportColumn { name: name.clone() });
+        }
+        let (first, rest) = own.split_at(2);
+        let mut columns: Vec<String> = first.iter().map(|c| c.to_string()).collect();
+        columns.extend(self.variables.iter().cloned());
+        columns.extend(rest.iter().map(|c| c.to_string()));
         let mut t = Table::new(columns);
         for c in &self.candidates {
             let mut row = vec![c.start as f64, f64::from(u8::from(c.is_valid()))];
@@ -142,7 +155,7 @@ impl SynthesisReport {
             }
             t.push(row);
         }
-        t
+        Ok(t)
     }
 }
 
