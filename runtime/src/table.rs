@@ -70,8 +70,9 @@ pub struct Table {
     pub columns: Vec<String>,
     /// Rows, each as long as `columns`.
     pub rows: Vec<Vec<f64>>,
-    /// Unit of each column (`""` for none; a missing entry is none), written into the CSV
-    /// header as `name [unit]`.
+    /// Unit of each column (`""` for none; a missing entry is none, and there are at most as
+    /// many as columns: [`Table::write_csv`] refuses more), written into the CSV header as
+    /// `name [unit]`.
     pub units: Vec<String>,
 }
 
@@ -210,6 +211,22 @@ fn check_distinct_to_write(columns: &[String]) -> io::Result<()> {
     }
 }
 
+/// An `InvalidInput` error for a table to be written with more units than columns: the header
+/// holds one unit per column, and the others were dropped without a word (a unit for each
+/// column misaligned, or a column forgotten).
+fn check_units_to_write(units: usize, columns: usize) -> io::Result<()> {
+    if units <= columns {
+        return Ok(());
+    }
+    Err(io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!(
+            "the table has {units} units for {columns} columns: the CSV header holds one unit per column, and \
+             the others would be lost"
+        ),
+    ))
+}
+
 impl Table {
     /// An empty table with these columns.
     pub fn new(columns: Vec<String>) -> Self {
@@ -345,8 +362,12 @@ impl Table {
     /// error, as is a table of rows but no columns, whose rows CSV cannot hold; a table of no
     /// columns and no rows is written as nothing). A column name that appears twice is an
     /// `InvalidInput` error naming it, before anything is written: [`Table::read_csv`] refuses
-    /// such a header, and what is written reads back.
+    /// such a header, and what is written reads back. More units than columns is an
+    /// `InvalidInput` error naming both counts, as serde refuses such a table: the header has
+    /// no place for the others. Fewer is well formed (a missing unit is none), and reads back
+    /// with `""` for each missing unit.
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
+        check_units_to_write(self.units.len(), self.columns.len())?;
         if self.columns.is_empty() {
             return no_columns(self.rows.len());
         }

@@ -175,3 +175,27 @@ fn a_column_name_that_appears_twice_is_refused_when_written() {
     distinct.write_csv(&mut csv).unwrap();
     assert_eq!(Table::read_csv(&csv[..]).unwrap(), distinct, "{}", String::from_utf8_lossy(&csv));
 }
+
+/// Units beyond the columns are refused when written, naming both counts (as serde refuses such
+/// a table): the header holds one unit per column, and the others were dropped without a word.
+/// Fewer units than columns is well formed, a missing unit none: each reads back as `""`.
+#[test]
+fn more_units_than_columns_are_refused_when_written() {
+    let mut t = Table::new(vec!["phi".into(), "x".into()]);
+    t.push(vec![0.5, 1.0]);
+    t.units = vec!["rad".into(), "mm".into(), "mm/rad".into()];
+    let mut csv = Vec::new();
+    let err = t.write_csv(&mut csv).unwrap_err();
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+    assert!(err.to_string().contains("the table has 3 units for 2 columns"), "{err}");
+    assert!(csv.is_empty(), "{}", String::from_utf8_lossy(&csv));
+    // So is a table of no columns given a unit.
+    let none = Table { columns: Vec::new(), rows: Vec::new(), units: vec!["mm".into()] };
+    assert_eq!(none.write_csv(Vec::new()).unwrap_err().kind(), std::io::ErrorKind::InvalidInput);
+    // Fewer: the missing unit reads back as none.
+    t.units = vec!["rad".into()];
+    let mut csv = Vec::new();
+    t.write_csv(&mut csv).unwrap();
+    let back = Table::read_csv(&csv[..]).unwrap();
+    assert_eq!((back.units, back.rows), (vec!["rad".to_string(), String::new()], t.rows));
+}
