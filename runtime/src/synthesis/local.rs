@@ -19,10 +19,14 @@ pub struct LocalConfig {
     /// (their largest weighted distance from their centroid; a radian times the largest angle
     /// weight where every target is an angle; default `1e-14`, rounding).
     pub tol: f64,
-    /// Converged when an accepted step changes no unknown by more than `step_tol` times its
+    /// Converged when a damped step changes no unknown by more than `step_tol` times its
     /// size (`|dz_i| <= step_tol (|z_i| + step_tol w_i)`, `w_i` the width of its bounds, or its
     /// magnitude where they are one value: free of the units of length and angle; default
-    /// `1e-13`): a local minimum, whose residual need not be zero.
+    /// `1e-13`), whether it lowered the residual (and was taken) or not. That says the solve
+    /// moves the design no further, not that it is at a local minimum: it usually is one
+    /// (whose residual need not be zero), but the step is damped, and under heavy damping
+    /// (grown by rejected steps, as near where the design stops assembling) a step that small
+    /// can stop it where the gradient is not zero.
     pub step_tol: f64,
     /// Initial damping, relative to the diagonal of `J^T J` (default `1e-3`).
     pub lambda: f64,
@@ -261,7 +265,8 @@ impl<K: SensKernel> ProblemOf<K> {
                         step = Step::Accepted { small };
                         break;
                     }
-                    // No shorter step changes the design either: a local minimum.
+                    // No shorter (more damped) step changes the design either: the solve moves
+                    // no further, at a local minimum or where the damping allows no larger step.
                     _ if small => {
                         step = Step::Stationary;
                         break;

@@ -192,18 +192,23 @@ impl Task {
     }
 }
 
-/// `n` precision points at Chebyshev spacing on `[lo, hi]`:
-/// `(lo + hi) / 2 - (hi - lo) / 2 cos((2j - 1) pi / 2n)` for `j = 1..=n`, increasing. They
-/// minimise the largest structural error of a function interpolated at them (Freudenstein's
-/// choice of precision points in function generation).
+/// `n` precision points at Chebyshev spacing between `lo` and `hi`:
+/// `(lo + hi) / 2 - (hi - lo) / 2 cos((2j - 1) pi / 2n)` for `j = 1..=n`, in order from `lo`
+/// to `hi`: increasing where `lo < hi`, decreasing where `lo > hi`.
+/// They minimise the largest structural error of a function interpolated at them
+/// (Freudenstein's choice of precision points in function generation).
 ///
 /// Errors: those of [`chebyshev_points`](super::classical::chebyshev_points), which this is:
-/// `n == 0` or more than memory holds, an end not finite, `lo == hi`.
+/// `n == 0` or more than memory holds, an end not finite, `lo == hi`, or a range too narrow for
+/// `n` distinct doubles at Chebyshev spacing.
 ///
 /// ```
 /// use kinloop_runtime::synthesis::chebyshev;
 /// let x = chebyshev(1.0, 2.0, 3)?;
 /// assert!((x[0] - 1.0669872981077808).abs() < 1e-15 && (x[1] - 1.5).abs() < 1e-15);
+/// // From 2 to 1: decreasing.
+/// let back = chebyshev(2.0, 1.0, 3)?;
+/// assert!((back[0] - 1.9330127018922192).abs() < 1e-15 && back[0] > back[1] && back[1] > back[2]);
 /// # Ok::<(), kinloop_runtime::synthesis::classical::ClassicalError>(())
 /// ```
 pub fn chebyshev(lo: f64, hi: f64, n: usize) -> Result<Vec<f64>, super::classical::ClassicalError> {
