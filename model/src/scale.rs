@@ -19,7 +19,7 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
-    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, solve_blocks, to_rescue, whole_position,
+    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, solve_blocks, to_rescue, turns_culprit, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -73,10 +73,11 @@ impl Model {
         error: StepError,
     ) -> Result<(Vec<f64>, SolveReport), StepError> {
         // A value given that is not finite explains the failure at any size (its error names
-        // it), as the compiled mechanism's does.
+        // it), as the compiled mechanism's does; so does an angle guessed too many turns out.
         if !matches!(error, StepError::Block { .. } | StepError::NonFinite)
             || !guess.iter().chain(x).all(|v| v.is_finite())
             || !self.param_values().iter().all(|v| v.is_some_and(f64::is_finite))
+            || self.too_many_turns(&error, guess, cfg)
         {
             return Err(error);
         }
@@ -102,6 +103,17 @@ impl Model {
             // More unknowns than the dense sizes: not solved again.
             None => Err(error),
         }
+    }
+
+    /// Whether the failure `error` from `guess` is an angle's guessed too many turns out, as its
+    /// error says (`turns_culprit`, the compiled mechanism's test): the compiled rescue lets
+    /// that error stand.
+    fn too_many_turns(&self, error: &StepError, guess: &[f64], cfg: &NewtonConfig) -> bool {
+        let StepError::Block { block, failure: StepFailure::Block(f) } = *error else {
+            return false;
+        };
+        let unknowns = self.block_rows_cols.get(block).map_or(&[][..], |(_, cols)| &cols[..]);
+        turns_culprit(unknowns.iter().copied(), self.unknown_kinds(), f, guess, cfg).is_some()
     }
 
     /// The failure `fail` of Newton over the whole system (its row an index into the

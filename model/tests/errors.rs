@@ -196,6 +196,22 @@ fn an_angle_too_many_turns_out_is_named() {
     eprintln!("{e}");
 }
 
+/// The slotted lever (size 3) from an angle's guess too many turns out and a length's far beyond
+/// the mechanism's size (`1e150`), or two guesses whose sum overflows (`1e308` each): the
+/// magnitudes at the guess are beyond the closed forms' sizes, and the solve again by Newton
+/// over the whole system returned the far angle with a length of `0` or `1e168`, with no error.
+/// The angle is named, as it is from a length's guess of the mechanism's size.
+#[test]
+fn an_angle_too_many_turns_out_is_named_beside_a_length_guessed_far_out() {
+    let compiled = fx::SlottedLever::default();
+    let mut model = read(fx::SLOTTED_LEVER_TEXT);
+    for guess in [[3.0, 1e7], [1e150, 1e7], [1e308, 1e308]] {
+        let e = same_error(&compiled, &mut model, [0.3], guess);
+        assert!(matches!(e, Error::TooManyTurns { .. }), "{guess:?}: {e:?}");
+        assert_eq!(name_of(&e), "theta");
+    }
+}
+
 /// A sweep whose angle has turned a billion radians (its guess carried over that many turns)
 /// fails at its first step, alike.
 #[test]

@@ -441,10 +441,9 @@ where
 }
 
 /// The angle of block `block` guessed too many turns out to be solved to the tolerance of
-/// `cfg` (see [`Error::TooManyTurns`]), and its value, when that explains the failure `fail`:
-/// a closed form's own finding (its root on the guess's turn), or any failure of Newton's from
-/// such a guess, whose residual stalls at the angle's rounding. The angle is the block's with
-/// the largest guess.
+/// `cfg` (see [`Error::TooManyTurns`]), and its value, when that explains the failure `fail`
+/// (see [`turns_culprit`]): a closed form's own finding (its root on the guess's turn), or a
+/// failure from such a guess. The angle is the block's with the largest guess.
 fn too_many_turns<M, const N: usize, const NI: usize, const NO: usize>(
     block: usize,
     fail: BlockFailure,

@@ -4,7 +4,7 @@
 //! lengths) for residuals.
 
 use kinloop::{Error, Mechanism, NewtonConfig};
-use kinloop_fixtures::{FourBar, FourBarUnknowns};
+use kinloop_fixtures::{FourBar, FourBarUnknowns, SlottedLever};
 use std::f64::consts::PI;
 
 use crate::support::{angle_apart, four_bar_angles, four_bar_limit, tol};
@@ -38,6 +38,37 @@ fn ok_with_a_large_residual_is_impossible() {
     match CRANK_ROCKER.kinematics_flat(&[0.3], &[1e15, 1.5], &NewtonConfig::default()) {
         Ok(k) => assert!(scaled_residual(&CRANK_ROCKER, 0.3, &k.q) <= tol::SOLVE, "{k:?}"),
         Err(e) => assert!(matches!(e, Error::TooManyTurns { ref name, .. } if name == "beta"), "{e}"),
+    }
+}
+
+/// The slotted lever (size 3: crank 1, rocker pivot 2 below it) from guesses whose angle is
+/// too many turns out (beyond `largest_precise_angle`, 4.5e6 rad by default) and whose length
+/// is ordinary or far beyond the mechanism's size. Whatever the length's guess, no solve can
+/// give the angle on its turn to the tolerance: the error names it. A length guessed at `1e150`
+/// or more made the magnitudes at the guess those of a mechanism beyond the closed forms'
+/// sizes, and the whole-system Newton solve that answers there returned the far angle with a
+/// length of `1e168`, `1e276` or `0` (the loop open by its whole size) and no error; a sum of
+/// the two guesses that overflows (`1e308` each) was reported as an equation not finite.
+#[test]
+fn an_angle_too_many_turns_out_is_named_whatever_the_lengths_guess() {
+    let m = SlottedLever::default();
+    let cfg = NewtonConfig::default();
+    assert!(cfg.largest_precise_angle() < 1e7);
+    let guesses = [(3.0, 1e7), (1e150, 1e7), (1e200, 1e7), (1e308, 1e307), (1e308, 1e308), (1e308, -1e308)];
+    for (s, theta) in guesses.into_iter().chain([(f64::MAX, 3e292), (-f64::MAX, -3e292)]) {
+        let guess = [s, theta];
+        let results = [
+            m.position_flat(&[0.3], &guess, &cfg).map(|(q, _)| q),
+            m.kinematics_flat(&[0.3], &guess, &cfg).map(|k| k.q),
+        ];
+        for result in results {
+            match result {
+                Err(Error::TooManyTurns { ref name, value, .. }) => {
+                    assert!(name == "theta" && value.abs() > cfg.largest_precise_angle(), "{s:e}, {theta:e}: {value:e}")
+                }
+                other => panic!("guess {s:e}, {theta:e}: {other:?}"),
+            }
+        }
     }
 }
 

@@ -31,8 +31,9 @@ pub fn first_bad_value(
 /// The angle of a block guessed too many turns out to be solved to the tolerance of `cfg`
 /// (see [`Error::TooManyTurns`](crate::Error::TooManyTurns)) and its value, when that explains
 /// the failure `fail`: a closed form's own finding (its root on the guess's turn; the angle
-/// `None` when the block has none), or any failure of Newton's from such a guess, whose
-/// residual stalls at the angle's rounding. `unknowns` are the block's, `kinds` and `guess` all
+/// `None` when the block has none), or any failure but an invalid configuration, an underflow
+/// or an overflow from such a guess (Newton's residual stalls at the angle's rounding; a
+/// closed form's sum of its guesses may overflow). `unknowns` are the block's, `kinds` and `guess` all
 /// the mechanism's; the angle is the block's with the largest guess.
 pub fn turns_culprit(
     unknowns: impl IntoIterator<Item = usize>,
@@ -48,13 +49,12 @@ pub fn turns_culprit(
     match (fail, largest) {
         (BlockFailure::TooManyTurns { value }, u) => Some((u, value)),
         // An equation too small or too large for `f64` explains a failure whatever the guesses.
-        (
-            BlockFailure::InvalidConfig { .. }
-            | BlockFailure::NonFinite { .. }
-            | BlockFailure::Underflow { .. }
-            | BlockFailure::Overflow { .. },
-            _,
-        ) => None,
+        // A value not finite does not: the closed forms' check of their guesses' sum finds finite
+        // guesses "not finite" where the sum overflows, which takes an angle's guess of about
+        // `1e292` rad or more (a length's is at most `f64::MAX`), far beyond the bound.
+        (BlockFailure::InvalidConfig { .. } | BlockFailure::Underflow { .. } | BlockFailure::Overflow { .. }, _) => {
+            None
+        }
         (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((Some(u), guess[u])),
         _ => None,
     }

@@ -119,8 +119,12 @@ pub(crate) struct Whole<J, A, F, const N: usize> {
 /// any size: see [`to_rescue`]), the position solved by Newton
 /// over the whole system and `m`'s result there, or where Newton fails, its failure as `m`'s
 /// error (where the result fails, the result's error); otherwise `error`. A value given that
-/// is not finite, or an invalid configuration, explains the failure at any size: `error`
-/// stands.
+/// is not finite, an angle guessed too many turns out ([`Error::TooManyTurns`]: no solve can
+/// give it on its turn to the tolerance), or an invalid configuration explains the failure at
+/// any size: `error` stands. (The magnitudes are judged at the guess, so a length guessed far
+/// beyond the mechanism's size, `1e150` for a slotted rocker of size 2, puts it outside
+/// [`CLOSED_FORM_SIZES`]; Newton then returned an angle `1e7` rad out and a length `1e168` with
+/// no error, its residual judged against the guess's magnitudes.)
 pub(crate) fn rescue<J, A, F, T, const N: usize, const NI: usize>(
     m: &Whole<J, A, F, N>,
     x: &[f64; NI],
@@ -134,7 +138,7 @@ where
     F: Fn(BlockFailure) -> Error,
 {
     if !guess.iter().chain(x.iter()).all(|v| v.is_finite())
-        || matches!(error, Error::NonFinite { .. } | Error::InvalidArgument(_))
+        || matches!(error, Error::NonFinite { .. } | Error::InvalidArgument(_) | Error::TooManyTurns { .. })
         || cfg.invalid_field().is_some()
     {
         return Err(error);
