@@ -19,7 +19,8 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
-    AtLimit, BlockEval, BlockFailure, SolveReport, in_block, solve_blocks, to_rescue, turns_culprit, whole_position,
+    AtLimit, BlockEval, BlockFailure, SolveReport, closes_in_own_magnitudes, in_block, solve_blocks, to_rescue,
+    turns_culprit, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -98,11 +99,20 @@ impl Model {
             };
         }
         match whole!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16) {
-            Some(Ok(solved)) => Ok(solved),
+            // Its loops closed in the position's own magnitudes, as the compiled rescue tests.
+            Some(Ok(solved)) if self.closes(x, &solved.0, cfg) => Ok(solved),
+            Some(Ok(_)) => Err(error),
             Some(Err(fail)) => Err(self.whole_failure(fail)),
             // More unknowns than the dense sizes: not solved again.
             None => Err(error),
         }
+    }
+
+    /// Whether the position `q` at `x` closes its loops in its own magnitudes
+    /// (`closes_in_own_magnitudes`, the compiled rescue's test).
+    fn closes(&mut self, x: &[f64], q: &[f64], cfg: &NewtonConfig) -> bool {
+        let mut own = Jacobian::default();
+        self.jacobian(x, q, &mut own).is_ok() && closes_in_own_magnitudes(&own.f, &own.scale, cfg)
     }
 
     /// Whether the failure `error` from `guess` is an angle's guessed too many turns out, as its

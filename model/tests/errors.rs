@@ -212,6 +212,21 @@ fn an_angle_too_many_turns_out_is_named_beside_a_length_guessed_far_out() {
     }
 }
 
+/// The slotted lever at its singular position (`r = d = 1`, `phi = -pi/2`: the crank pin on the
+/// rocker's pivot) from a length's guess of `1e150`: the solve again by Newton over the whole
+/// system, its residual judged in the magnitudes at that guess, returned a length of `1e118`
+/// with no error. Singular, as from a guess of the mechanism's size.
+#[test]
+fn a_length_guessed_far_out_at_a_singular_position_is_singular() {
+    let compiled = fx::SlottedLever { r: 1.0, d: 1.0, l: 4.0 };
+    let mut model = read(fx::SLOTTED_LEVER_TEXT);
+    set(&mut model, &[("r", 1.0), ("d", 1.0), ("l", 4.0)]);
+    for guess in [[1.0, 0.3], [1e150, 0.3], [1e200, 0.3]] {
+        let e = same_error(&compiled, &mut model, [-std::f64::consts::FRAC_PI_2], guess);
+        assert!(matches!(e, Error::Singular { .. }), "{guess:?}: {e:?}");
+    }
+}
+
 /// A sweep whose angle has turned a billion radians (its guess carried over that many turns)
 /// fails at its first step, alike.
 #[test]

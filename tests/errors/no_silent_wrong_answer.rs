@@ -72,6 +72,43 @@ fn an_angle_too_many_turns_out_is_named_whatever_the_lengths_guess() {
     }
 }
 
+/// The slotted lever with its crank as long as its pivot's offset (`r = d = 1`) at `phi = -pi/2`:
+/// the crank pin sits on the rocker's pivot (the lever `s`, `|r (cos phi, sin phi) + (0, d)|`,
+/// is `6.1e-17`), a singular position at which no rocker angle is determined. From a length's
+/// guess of the mechanism's size the solve says so; from one of `1e150` the magnitudes at the
+/// guess were beyond the closed forms' sizes, and the whole-system Newton solve that answers
+/// there, its residual judged in those magnitudes, returned `s = 1.2e118` (and `0` from `1e200`)
+/// with no error, the loop open by all of it. Every `Ok` must close the loop, in the lever's own
+/// lengths computed here; every guess gives the error the mechanism's size gives.
+#[test]
+fn a_length_guessed_far_out_never_opens_the_loop() {
+    let m = SlottedLever { r: 1.0, d: 1.0, l: 4.0 };
+    let cfg = NewtonConfig::default();
+    let phi = -PI / 2.0;
+    let (px, py) = (m.r * phi.cos(), m.r * phi.sin() + m.d);
+    let lever = px.hypot(py);
+    assert!(lever < 1e-16, "{lever}");
+    for s in [1.0, 1e150, 1e200, 1e300] {
+        let guess = [s, 0.3];
+        let results = [
+            m.position_flat(&[phi], &guess, &cfg).map(|(q, _)| q),
+            m.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q),
+        ];
+        for result in results {
+            match result {
+                Ok([s_q, theta]) => {
+                    let open = (px - s_q * theta.cos()).hypot(py - s_q * theta.sin());
+                    assert!(
+                        open <= tol::SOLVE * (m.r + m.d),
+                        "guess {s:e}: s {s_q:e}, theta {theta}, open by {open:e}"
+                    );
+                }
+                Err(e) => assert!(matches!(e, Error::Singular { .. }), "guess {s:e}: {e}"),
+            }
+        }
+    }
+}
+
 #[test]
 fn a_guess_within_tolerance_is_still_corrected() {
     // A guess off by 1e-13 rad has a residual below 1e-12 (the old absolute stop): it used to
