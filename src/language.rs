@@ -28,7 +28,11 @@
 //!   Cartesian one; `+` and `-` chain vectors, a scalar scales a vector (`k * v`, `v / k`),
 //!   `v.x` and `v.y` take components. `@` binds tighter than `+` and looser than `*`, so
 //!   `a + 2 * r @ phi` is `a + ((2 r) @ phi)`, and an angle that is a sum needs parentheses:
-//!   `r @ (phi + gamma)`.
+//!   `r @ (phi + gamma)`. The length comes first: a name that is an angle (it turns a link
+//!   elsewhere, `l @ psi`, is the argument of a sine or cosine, is set to an angle by an `eq`, or
+//!   has its value written in degrees) written as the length, `psi @ l`, is a compile error
+//!   that says to write `l @ psi`. A name of no known kind cannot be told from a length, so a
+//!   swap whose angle is an angle nowhere else compiles as written.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

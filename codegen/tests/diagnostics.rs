@@ -468,3 +468,57 @@ fn an_angle_unknown_is_no_coordinate_of_a_body_or_a_force() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("the point a force acts at is a point of lengths, but `beta` is an angle"), "{e:#?}");
 }
+
+#[test]
+fn an_angle_written_as_the_length_of_a_polar_term_gets_the_swap() {
+    // `psi` turns the rod in the point, so `psi @ l` in the loop has its operands swapped.
+    let e = errors(
+        "pub struct SliderCrank { params r, l, e; input phi; unknowns psi, x;
+         loop oab: r @ phi == (x, e) + psi @ l;
+         point mid = r @ phi + 0.5 * l @ psi; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`psi` is an angle (elsewhere it turns a link"), "{e:#?}");
+    assert!(e[0].ends_with("write `l @ psi`"), "{e:#?}");
+    // An angle written in degrees, a parameter, and an angle that is a sum.
+    let e = errors(
+        "pub struct SliderCrank { params r, l, gamma = deg(10); input phi; unknowns psi = deg(-20), x;
+         loop oab: r @ phi == (x, 0) + psi @ l + gamma @ (phi - psi); }",
+    );
+    assert_eq!(e.len(), 2, "{e:#?}");
+    assert!(e[0].starts_with("`psi` is an angle (its value is written in degrees)"), "{e:#?}");
+    assert!(e[1].ends_with("write `(phi - psi) @ gamma`"), "{e:#?}");
+    // An angle that an `eq` sets, and one whose sine is taken.
+    let e = errors(
+        "pub struct Guide { params r, d; input phi; unknowns th, s, x;
+         eq a: th == atan2(r * sin(phi), d);
+         loop g: r @ phi == (x, 0) + th @ s;
+         eq b: s == d * sin(phi); }",
+    );
+    assert!(e.iter().any(|m| m.ends_with("write `s @ th`")), "{e:#?}");
+    // An angle as the length of a constant direction: no swap to write, a length to write.
+    let e = errors(
+        "pub struct Rack { params r; input phi; unknowns x;
+         loop c: phi @ 0 == (x, 0) + r @ phi; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`phi` is an angle"), "{e:#?}");
+    assert!(e[0].ends_with("write a length there, such as `r * phi` for the arc a radius `r` rolls"), "{e:#?}");
+}
+
+#[test]
+fn lengths_times_angles_constants_and_names_of_no_known_kind_are_polar_lengths() {
+    for body in [
+        // A length of no known kind, however it is named.
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;",
+        // A rolled arc, a length times an angle: not a bare name.
+        "params r, l; input phi; unknowns psi, x; loop c: (r * phi) @ 0 + r @ phi == (x, 0) + l @ psi;",
+        // A constant length, and a slider's unknown as a length turned by an angle unknown.
+        "params r, d; input phi; unknowns th, s; loop c: r @ phi + 1 @ th == (d, 0) + s @ th;",
+        // A length unknown that is also scaled into an argument (a rack's travel).
+        "params r, rp, l; input phi; unknowns x, psi; loop c: r @ phi + x @ 0 == (0, 1) + l @ (x / rp) + l @ psi;",
+    ] {
+        let e = errors(&format!("pub struct M {{ {body} }}"));
+        assert!(e.iter().all(|m| !m.contains("is an angle")), "{body}: {e:#?}");
+    }
+}

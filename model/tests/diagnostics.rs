@@ -378,3 +378,16 @@ fn a_mismatched_closing_bracket_names_the_one_it_closes() {
         assert_eq!(got, [(message, line, column)], "{stray}");
     }
 }
+
+/// A polar term with its length and angle swapped (`psi @ l`, where `psi` turns the rod in the
+/// point) is refused in a `.kl` file as by the macro: at the term, saying what to write.
+#[test]
+fn a_swapped_polar_term_is_refused_at_run_time() {
+    let text = "pub struct SliderCrank {\n    params r = 1, l = 3, e = 0.5;\n    input phi;\n    unknowns psi, x = 3;\n    \
+                loop oab: r @ phi == (x, e) + psi @ l;\n    point mid = r @ phi + 0.5 * l @ psi;\n}\n";
+    let Err(ReadError::Rejected(d)) = Model::read("swap.kl", text) else { panic!("accepted: {text}") };
+    let got: Vec<(usize, usize)> = d.items.iter().map(|i| (i.line, i.column)).collect();
+    assert_eq!(got, [(5, 35)], "{d}");
+    assert!(d.items[0].message.starts_with("`psi` is an angle"), "{d}");
+    assert!(d.items[0].message.ends_with("write `l @ psi`"), "{d}");
+}

@@ -414,7 +414,7 @@ fn coord(g: &Graph, columns: &HashMap<NodeId, usize>, n: NodeId) -> Option<Coord
 /// angle (`eq e: th == atan2(y, x);`). Only so: a length may also appear in an argument, scaled
 /// (a rack's travel `sin(x / rp)`), and a body turning with it would turn by its metres.
 /// `arguments` are those of the kinematics' sines, cosines and tangents.
-fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &[NodeId]) -> bool {
+pub(super) fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &[NodeId]) -> bool {
     multiples::in_whole_angle(g, leaf, arguments) || residuals.iter().any(|&r| sets_to_angle(g, leaf, r))
 }
 

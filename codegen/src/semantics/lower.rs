@@ -5,7 +5,7 @@
 use super::symbols::{Scope, Val};
 use crate::front::expr::{BinOp, Component, Expr, SpanRange};
 use crate::front::syntax::Errors;
-use crate::graph::dag::{Func, Graph, Leaf, NodeId};
+use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use proc_macro2::Span;
 
 /// The state of model building: the graph being built, the names in scope and the errors found.
@@ -29,6 +29,52 @@ pub struct Lowerer {
     /// Set while an unknown's initial guess is lowered: a name defined further down may be
     /// moved above it only if it uses no unknown, which its error says.
     pub(super) in_guess: bool,
+    /// The polar terms whose length is a bare name, for the check that it is not an angle
+    /// (`th @ s` for `s @ th`), made once the whole mechanism is lowered ([`super::polar`]).
+    pub(super) named_lengths: Vec<NamedLength>,
+}
+
+/// A polar term whose length is a bare name of a parameter, input or unknown, noted while it is
+/// lowered for the check that the name is not an angle ([`super::polar`]).
+pub(super) struct NamedLength {
+    /// The name's leaf.
+    pub(super) leaf: Leaf,
+    /// The whole term `length @ angle`.
+    pub(super) term: SpanRange,
+    /// The length as written.
+    pub(super) length: String,
+    /// The angle as written, parenthesised where it is an operation (so that the swap reads
+    /// as one term).
+    pub(super) angle: String,
+    /// Whether the angle is a constant (`x @ 0`): then it is no length swapped with the name.
+    pub(super) constant_angle: bool,
+}
+
+impl NamedLength {
+    /// The term `lhs @ rhs` (lowered to `len @ angle`), if its length is a bare name of a
+    /// parameter, input or unknown.
+    pub(super) fn of(g: &Graph, (lhs, rhs): (&Expr, &Expr), len: NodeId, angle: NodeId) -> Option<Self> {
+        let Expr::Var(name) = bare(lhs) else { return None };
+        let leaf = match g.op(len) {
+            Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))) => l,
+            _ => return None,
+        };
+        let constant_angle = g.as_const(angle).is_some();
+        let angle = match bare(rhs) {
+            e @ (Expr::Binary { .. } | Expr::Neg { .. }) => format!("({})", e.show()),
+            e => e.show(),
+        };
+        let term = lhs.range().to(rhs.range());
+        Some(NamedLength { leaf, term, length: name.to_string(), angle, constant_angle })
+    }
+}
+
+/// `e` without its enclosing parentheses.
+fn bare(e: &Expr) -> &Expr {
+    match e {
+        Expr::Paren { inner, .. } => bare(inner),
+        _ => e,
+    }
 }
 
 /// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
@@ -63,6 +109,7 @@ impl Lowerer {
             written_here: Default::default(),
             labels: Default::default(),
             in_guess: false,
+            named_lengths: Vec::new(),
         }
     }
 
@@ -264,6 +311,7 @@ impl Lowerer {
                 None => Val::S(g.powf(a, b)),
             },
             (BinOp::Polar, Val::S(len), Val::S(angle)) => {
+                self.named_lengths.extend(NamedLength::of(g, sides, len, angle));
                 let c = g.func(Func::Cos, angle);
                 let s = g.func(Func::Sin, angle);
                 Val::V(g.mul(len, c), g.mul(len, s))

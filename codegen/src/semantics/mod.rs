@@ -8,6 +8,7 @@ pub mod drawing;
 pub mod dynamics;
 pub mod lower;
 pub mod model;
+mod polar;
 mod scope;
 pub mod suggest;
 mod symbols;

@@ -7,7 +7,7 @@ use super::lower::Lowerer;
 use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options};
-use crate::graph::dag::{Graph, NodeId};
+use crate::graph::dag::{Graph, Leaf, NodeId};
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::ext::IdentExt;
@@ -228,6 +228,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let columns: Vec<NodeId> =
         out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
     let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals);
+    super::polar::check(&mut lw, &residuals, &columns, &in_degrees(&globals));
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.
     let drawing = if lw.errors.is_empty() { super::drawing::model(&mut lw, &items) } else { DrawingModel::default() };
     let unknowns =
@@ -320,6 +321,16 @@ fn check_counts(lw: &mut Lowerer, g: &mut Globals, name: &Ident) {
             ),
         ));
     }
+}
+
+/// The parameters and unknowns whose values are written in degrees: angles.
+fn in_degrees(g: &Globals) -> Vec<Leaf> {
+    let written = |list: &[&Decl]| -> Vec<u16> {
+        let degrees = |d: &&Decl| d.value.as_ref().is_some_and(Expr::written_in_degrees);
+        list.iter().enumerate().filter(|(_, d)| degrees(d)).map(|(i, _)| i as u16).collect()
+    };
+    let params = written(&g.params).into_iter().map(Leaf::Param);
+    params.chain(written(&g.unknowns).into_iter().map(Leaf::Unknown)).collect()
 }
 
 fn named(d: &Decl, value: Option<NodeId>, item_of: &HashMap<*const Decl, usize>) -> Named {
