@@ -522,3 +522,24 @@ fn lengths_times_angles_constants_and_names_of_no_known_kind_are_polar_lengths()
         assert!(e.iter().all(|m| !m.contains("is an angle")), "{body}: {e:#?}");
     }
 }
+
+#[test]
+fn a_body_turning_with_the_length_of_a_polar_term_is_told_of_the_swap() {
+    // `beta` turns the rod but is the length of `beta @ l`: the term is swapped.
+    let e = errors(
+        "pub struct Engine { params r, l, m; input phi; unknowns beta, x;
+         loop abc: r @ phi + beta @ l == (x, 0);
+         body rod: mass m, com (x, 0), turns beta; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`beta` is not an angle"), "{e:#?}");
+    assert!(e[0].ends_with("help: `beta @ l` has `beta` as the length of `@`, which takes `length @ angle`: if `beta` is the angle, write `l @ beta`"), "{e:#?}");
+    // A slider's coordinate as the length of a constant direction is no swap: no help.
+    let e = errors(
+        "pub struct Engine { params r, l, m; input phi; unknowns beta, x;
+         loop abc: r @ phi + l @ beta == x @ 0;
+         body rod: mass m, com (x, 0), turns x; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`x` is not an angle") && !e[0].contains("help:"), "{e:#?}");
+}

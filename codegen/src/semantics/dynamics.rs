@@ -272,7 +272,8 @@ impl Pending {
                         "`{id}` is not an angle: it is the angle of no `@`, sin, cos or tan of the mechanism \
                          (as in `l @ {id}`, `sin(2 * {id} + gamma)`; not scaled, as in `sin({id} / l)`), and no \
                          `eq` sets it to an angle (as `{id} == atan2(dy, dx)` does); a body that only slides \
-                         has no `turns`, a torque acts on an angle"
+                         has no `turns`, a torque acts on an angle{}",
+                        swapped_hint(lw, leaf)
                     ),
                 ));
             }
@@ -380,6 +381,19 @@ fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
         format!("`{clause} {id}`: `{id}` is {what}; `{clause}` takes an input or an angle unknown"),
     ));
     None
+}
+
+/// For an input or unknown named as an angle (`turns`, `on`) that is the length of a polar term,
+/// `psi @ l`, what most likely happened: the term's length and angle are swapped.
+fn swapped_hint(lw: &Lowerer, leaf: Leaf) -> String {
+    match lw.named_lengths.iter().find(|t| t.leaf == leaf && !t.constant_angle) {
+        Some(t) => format!(
+            "\nhelp: `{0} @ {1}` has `{0}` as the length of `@`, which takes `length @ angle`: if `{0}` is \
+             the angle, write `{1} @ {0}`",
+            t.length, t.angle
+        ),
+        None => String::new(),
+    }
 }
 
 /// The name of the input `n` is, if it is one.
