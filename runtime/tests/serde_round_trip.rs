@@ -158,3 +158,82 @@ fn a_state_with_no_pivot_reads_back_from_json() {
     let whole = json.replace("\"min_pivot\":null", "\"min_pivot\":1");
     assert_eq!(serde_json::from_str::<Kin<1, 1, 0>>(&whole).unwrap().health.min_pivot, 1.0);
 }
+
+/// A synthesis report holds non-finite values where a candidate is degenerate: the ratio of a
+/// zero-length link is infinite (`0/0` NaN where every link is zero), an error that cannot be
+/// evaluated is NaN. JSON has no NaN nor infinity and wrote them as `null`, which did not read
+/// back ("invalid type: null, expected f64"). Every value comes back as it was: a non-finite
+/// one is written as the string Rust prints for it, so that an infinity stays an infinity and
+/// a `Some` of one is not taken for `None` (`null`).
+#[test]
+fn a_synthesis_report_with_non_finite_values_reads_back_exactly() {
+    use kinloop_runtime::analysis::OptimizerStop;
+    use kinloop_runtime::metrics::GrashofClass;
+    use kinloop_runtime::synthesis::{
+        Candidate, Defect, FourBarClass, LocalReport, Origin, Rejections, SynthesisReport,
+    };
+    let (inf, nan) = (f64::INFINITY, f64::NAN);
+    let candidate = Candidate {
+        start: 2,
+        origin: Origin::Halton,
+        values: vec![0.0, nan, -0.0],
+        params: vec![0.0, nan, -0.0, inf],
+        inputs: vec![vec![0.1], vec![-inf]],
+        placement: Some([nan, inf, -inf, 1.0]),
+        positions: vec![vec![nan, 1.0], vec![0.5, inf]],
+        errors: vec![0.25, nan],
+        max_error: 0.25,
+        rms_error: nan,
+        defects: vec![
+            Defect::LinkRatio { ratio: inf },
+            Defect::LinkRatio { ratio: nan },
+            Defect::Miss { target: 1, error: nan },
+            Defect::Circuit { target: 1, at: nan },
+            Defect::Transmission { min: -inf },
+        ],
+        min_transmission: Some(inf),
+        four_bar: Some(FourBarClass { class: GrashofClass::ChangePoint, margin: nan, min_transmission: inf }),
+        local: LocalReport { evaluations: 1, iterations: 0, stop: OptimizerStop::Stalled, residual: inf },
+    };
+    let none = Candidate { min_transmission: None, four_bar: None, placement: None, ..candidate.clone() };
+    let report = SynthesisReport {
+        variables: vec!["a".into(), "b".into(), "c".into()],
+        bounds: vec![(0.0, 1.0), (-inf, inf), (0.5, 0.5)],
+        candidates: vec![candidate, none],
+        starts: 0..4,
+        seeds: 0,
+        unassembled: 2,
+        converged: 0,
+        valid: 0,
+        rejected: Rejections { link_ratio: 2, ..Rejections::default() },
+        evaluations: 9,
+    };
+    let back = round_trip(&report);
+    // The same values to the bit (NaN as any NaN: its payload is not kept), `Some` and `None`
+    // as they were.
+    let json = serde_json::to_string(&report).unwrap();
+    assert!(
+        json.contains(r#"{"LinkRatio":{"ratio":"inf"}}"#) && json.contains(r#""min_transmission":"inf""#),
+        "{json}"
+    );
+    let again = serde_json::to_string(&back).unwrap();
+    assert_eq!(again, json);
+    assert_eq!(back.candidates[0].min_transmission, Some(inf));
+    assert_eq!(back.candidates[1].min_transmission, None);
+    assert_eq!(back.candidates[0].defects[0], Defect::LinkRatio { ratio: inf });
+    assert!(matches!(back.candidates[0].defects[1], Defect::LinkRatio { ratio } if ratio.is_nan()));
+    assert_eq!(back.bounds[1], (-inf, inf));
+    assert_eq!(back.candidates[0].values[2].to_bits(), (-0.0f64).to_bits());
+    assert!(back.candidates[0].rms_error.is_nan() && back.candidates[0].local.residual == inf);
+    // What older writers wrote (and a hand-written file may hold): `null` for a plain number
+    // reads as NaN, and as `None` where the field is optional.
+    let nulls = json.replace("\"inf\"", "null").replace("\"-inf\"", "null").replace("\"NaN\"", "null");
+    let read: SynthesisReport = serde_json::from_str(&nulls).unwrap_or_else(|e| panic!("{nulls}: {e}"));
+    assert!(matches!(read.candidates[0].defects[0], Defect::LinkRatio { ratio } if ratio.is_nan()));
+    assert_eq!(read.candidates[0].min_transmission, None);
+    assert!(read.candidates[0].placement.is_some_and(|p| p[0].is_nan() && p[3] == 1.0));
+    // A string that is no number is refused, saying what a number may be written as.
+    let word = json.replacen("\"NaN\"", "\"none\"", 1);
+    let err = serde_json::from_str::<SynthesisReport>(&word).unwrap_err().to_string();
+    assert!(err.contains("expected a number, \"inf\", \"-inf\", \"NaN\", or null for NaN"), "{err}");
+}

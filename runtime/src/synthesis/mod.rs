@@ -26,6 +26,8 @@ pub mod classical;
 mod constraints;
 mod error;
 mod evolution;
+#[cfg(feature = "serde")]
+mod floats;
 mod halton;
 mod held;
 mod local;

@@ -8,12 +8,18 @@ use crate::table::Table;
 use std::ops::Range;
 
 /// The outcome of a search: the best candidates and what happened to the others.
+///
+/// With the feature `serde` it reads back exactly, non-finite numbers too (a zero-length
+/// link's infinite [`Defect::LinkRatio`], a NaN [`Defect::Miss`]): JSON has neither, and a
+/// self-describing format gets them as the strings `"inf"`, `"-inf"`, `"NaN"`, where `null`
+/// would be `None` in an optional field. `null` for a number that is not optional reads as NaN.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SynthesisReport {
     /// The design variables' names, the order of [`Candidate::values`].
     pub variables: Vec<String>,
     /// Their bounds, in the same order.
+    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
     pub bounds: Vec<(f64, f64)>,
     /// The best distinct candidates: valid ones (no defect) first, each group by increasing
     /// RMS error, ties by origin (seeds, then Halton starts, then islands) and then by index.

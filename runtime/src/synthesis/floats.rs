@@ -1,0 +1,135 @@
+//! Serialize and Deserialize of the numbers of a synthesis report (feature `serde`), exactly
+//! whatever their values.
+//!
+//! A report holds non-finite numbers where a candidate is degenerate: the ratio of a
+//! zero-length link is infinite, an error that cannot be evaluated is NaN. JSON has neither:
+//! serde_json writes them as `null`, which does not read back as an `f64`, and which in an
+//! `Option<f64>` is `None`. A self-describing format (`is_human_readable`) therefore gets a
+//! non-finite number as the string Rust prints for it (`inf`, `-inf`, `NaN`), so that an
+//! infinity stays an infinity and `Some(inf)` is not read as `None`; a compact binary format
+//! holds the `f64` itself. Reading takes a number, such a string, or `null` (what earlier
+//! writers wrote for any non-finite number) as NaN; where the field is an `Option`, `null` is
+//! `None`, as it always was.
+
+use serde::de::{DeserializeOwned, Deserializer, Error, Visitor};
+use serde::{Deserialize, Serialize, Serializer};
+
+/// One number as written and read by this module.
+#[derive(Clone, Copy)]
+pub(crate) struct Float(f64);
+
+impl Serialize for Float {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let v = self.0;
+        if v.is_finite() || !s.is_human_readable() {
+            s.serialize_f64(v)
+        } else {
+            // `inf`, `-inf` or `NaN`: what `f64::from_str` reads back.
+            s.serialize_str(&v.to_string())
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Float {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Float, D::Error> {
+        // A self-describing format says what it holds (a number, a string, `null`); a compact
+        // binary one holds the `f64` that was written, and must be asked for it.
+        if d.is_human_readable() { d.deserialize_any(FloatVisitor) } else { d.deserialize_f64(FloatVisitor) }
+    }
+}
+
+struct FloatVisitor;
+
+impl Visitor<'_> for FloatVisitor {
+    type Value = Float;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a number, \"inf\", \"-inf\", \"NaN\", or null for NaN")
+    }
+    fn visit_f64<E>(self, v: f64) -> Result<Float, E> {
+        Ok(Float(v))
+    }
+    // Whole numbers as JSON writes them when written by hand (`1`, not `1.0`).
+    fn visit_i64<E>(self, v: i64) -> Result<Float, E> {
+        Ok(Float(v as f64))
+    }
+    fn visit_u64<E>(self, v: u64) -> Result<Float, E> {
+        Ok(Float(v as f64))
+    }
+    fn visit_str<E: Error>(self, v: &str) -> Result<Float, E> {
+        v.parse().map(Float).map_err(|_| E::invalid_value(serde::de::Unexpected::Str(v), &self))
+    }
+    fn visit_unit<E>(self) -> Result<Float, E> {
+        Ok(Float(f64::NAN))
+    }
+    fn visit_none<E>(self) -> Result<Float, E> {
+        Ok(Float(f64::NAN))
+    }
+}
+
+/// A value made of numbers, with its form of [`Float`]s.
+pub(crate) trait Floats: Sized {
+    /// The same shape with every `f64` a [`Float`].
+    type Repr: Serialize + DeserializeOwned;
+    fn to_repr(&self) -> Self::Repr;
+    fn from_repr(r: Self::Repr) -> Self;
+}
+
+impl Floats for f64 {
+    type Repr = Float;
+    fn to_repr(&self) -> Float {
+        Float(*self)
+    }
+    fn from_repr(r: Float) -> f64 {
+        r.0
+    }
+}
+
+impl<T: Floats> Floats for Vec<T> {
+    type Repr = Vec<T::Repr>;
+    fn to_repr(&self) -> Self::Repr {
+        self.iter().map(T::to_repr).collect()
+    }
+    fn from_repr(r: Self::Repr) -> Self {
+        r.into_iter().map(T::from_repr).collect()
+    }
+}
+
+impl<T: Floats> Floats for Option<T> {
+    type Repr = Option<T::Repr>;
+    fn to_repr(&self) -> Self::Repr {
+        self.as_ref().map(T::to_repr)
+    }
+    fn from_repr(r: Self::Repr) -> Self {
+        r.map(T::from_repr)
+    }
+}
+
+impl Floats for [f64; 4] {
+    type Repr = [Float; 4];
+    fn to_repr(&self) -> Self::Repr {
+        self.map(Float)
+    }
+    fn from_repr(r: Self::Repr) -> Self {
+        r.map(|f| f.0)
+    }
+}
+
+impl Floats for (f64, f64) {
+    type Repr = (Float, Float);
+    fn to_repr(&self) -> Self::Repr {
+        (Float(self.0), Float(self.1))
+    }
+    fn from_repr(r: Self::Repr) -> Self {
+        (r.0.0, r.1.0)
+    }
+}
+
+/// For `#[serde(with = "floats")]`.
+pub(crate) fn serialize<T: Floats, S: Serializer>(v: &T, s: S) -> Result<S::Ok, S::Error> {
+    v.to_repr().serialize(s)
+}
+
+/// For `#[serde(with = "floats")]`.
+pub(crate) fn deserialize<'de, T: Floats, D: Deserializer<'de>>(d: D) -> Result<T, D::Error> {
+    T::Repr::deserialize(d).map(T::from_repr)
+}
