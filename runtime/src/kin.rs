@@ -91,8 +91,12 @@ pub struct Health {
     /// variable length (`s @ theta` with `s` an unknown or an input) is divided by at least the
     /// loop's other lengths: a slide passing near its pivot shows as near singular, as its angle
     /// is only known to about `eps` times their ratio to `s` there. Infinite where no block
-    /// was factorised (JSON writes it as `null`, which reads back as this infinity).
-    #[cfg_attr(feature = "serde", serde(deserialize_with = "crate::kin_serde::min_pivot"))]
+    /// was factorised (JSON writes it as `"inf"`, and reads it, or `null`, back as this
+    /// infinity).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::floats_serde::serialize", deserialize_with = "crate::kin_serde::min_pivot")
+    )]
     pub min_pivot: f64,
     /// The block with that smallest pivot ratio.
     pub weakest_block: usize,
@@ -162,7 +166,7 @@ impl<const N: usize, const NI: usize, const NO: usize> KinSink<N, NI, NO> for &m
 ///
 /// With the feature `serde` a state serializes as nested sequences and reads back only into a
 /// mechanism of the same sizes. `health.min_pivot` is infinite when no block was factorised:
-/// JSON writes it as `null`, which reads back as that infinity. Another value that is not
+/// JSON writes it as `"inf"`, which reads back as that infinity. Another value that is not
 /// finite needs a format that holds it (JSON writes it as `null`, which does not read back).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kin<const N: usize, const NI: usize, const NO: usize> {

@@ -110,36 +110,11 @@ impl<'de> Deserialize<'de> for DetSigns {
     }
 }
 
-/// Reads [`Health::min_pivot`]: a number, or `null` for the infinity of a state none of whose
-/// blocks was factorised. JSON has no infinity and writes it as `null`, which as an `f64` did
-/// not read back; a pivot ratio is never NaN nor negative, so `null` can stand for nothing else.
+/// Reads [`Health::min_pivot`] as every number of the crate is read (`crate::floats_serde`:
+/// a number, `"inf"`, or `null`), with NaN read as the infinity of a state none of whose blocks
+/// was factorised: a pivot ratio is never NaN, and JSON written before the infinity was written
+/// as `"inf"` holds `null` there.
 pub(crate) fn min_pivot<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    // A self-describing format says what it holds (a number, or JSON's `null`); a compact
-    // binary one holds the `f64` that was written, and must be asked for it.
-    if d.is_human_readable() { d.deserialize_any(PivotVisitor) } else { d.deserialize_f64(PivotVisitor) }
-}
-
-struct PivotVisitor;
-
-impl serde::de::Visitor<'_> for PivotVisitor {
-    type Value = f64;
-    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        f.write_str("a pivot ratio, or null for infinity (no block factorised)")
-    }
-    fn visit_f64<E>(self, v: f64) -> Result<f64, E> {
-        Ok(v)
-    }
-    // Whole numbers as JSON writes them when written by hand (`1`, not `1.0`).
-    fn visit_i64<E>(self, v: i64) -> Result<f64, E> {
-        Ok(v as f64)
-    }
-    fn visit_u64<E>(self, v: u64) -> Result<f64, E> {
-        Ok(v as f64)
-    }
-    fn visit_unit<E>(self) -> Result<f64, E> {
-        Ok(f64::INFINITY)
-    }
-    fn visit_none<E>(self) -> Result<f64, E> {
-        Ok(f64::INFINITY)
-    }
+    let v: f64 = crate::floats_serde::deserialize(d)?;
+    Ok(if v.is_nan() { f64::INFINITY } else { v })
 }

@@ -29,6 +29,8 @@ pub mod drawing;
 pub mod dynamics;
 mod error;
 pub mod events;
+#[cfg(feature = "serde")]
+mod floats_serde;
 #[doc(hidden)]
 pub mod generated;
 mod kin;

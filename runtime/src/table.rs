@@ -61,14 +61,16 @@ impl ColumnKey for &String {
 ///
 /// With the feature `serde` a table reads back only with every row as long as `columns` and no
 /// more units than columns (an error says which row or how many units), as [`Table::push`]
-/// keeps it. JSON holds no NaN nor infinity: serde_json writes them as `null`, which reads back
-/// as NaN (an infinity comes back as NaN); a format that holds them keeps them.
+/// keeps it. JSON holds no NaN nor infinity: a table writes them there as the strings `"NaN"`,
+/// `"inf"` and `"-inf"`, which read back as they were (as does `null`, read as NaN); a format
+/// that holds them keeps them.
 #[derive(Clone, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(try_from = "TableRepr"))]
 pub struct Table {
     /// Column names.
     pub columns: Vec<String>,
     /// Rows, each as long as `columns`.
+    #[cfg_attr(feature = "serde", serde(serialize_with = "crate::floats_serde::serialize_rows"))]
     pub rows: Vec<Vec<f64>>,
     /// Unit of each column (`""` for none; a missing entry is none, and there are at most as
     /// many as columns: [`Table::write_csv`] refuses more), written into the CSV header as
@@ -82,52 +84,11 @@ pub struct Table {
 #[derive(serde::Deserialize)]
 struct TableRepr {
     columns: Vec<String>,
-    rows: Vec<Vec<Value>>,
+    #[serde(with = "crate::floats_serde")]
+    rows: Vec<Vec<f64>>,
     // Tables written before the units were kept have none.
     #[serde(default)]
     units: Vec<String>,
-}
-
-/// A value of a table's row as read by serde: a number, or `null` read as NaN. JSON has no NaN
-/// nor infinity and writes them as `null` (a table holds NaN where a value is not known, as
-/// `SynthesisReport::table` where a value was not asked), which as an `f64` did not read back.
-#[cfg(feature = "serde")]
-struct Value(f64);
-
-#[cfg(feature = "serde")]
-impl<'de> serde::Deserialize<'de> for Value {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Value, D::Error> {
-        // A self-describing format says what it holds (a number, or JSON's `null`); a compact
-        // binary one holds the `f64` that was written, and must be asked for it.
-        if d.is_human_readable() { d.deserialize_any(ValueVisitor) } else { d.deserialize_f64(ValueVisitor) }
-    }
-}
-
-#[cfg(feature = "serde")]
-struct ValueVisitor;
-
-#[cfg(feature = "serde")]
-impl serde::de::Visitor<'_> for ValueVisitor {
-    type Value = Value;
-    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        f.write_str("a number, or null for NaN")
-    }
-    fn visit_f64<E>(self, v: f64) -> Result<Value, E> {
-        Ok(Value(v))
-    }
-    // Integers as JSON writes whole numbers read from elsewhere (`1`, not `1.0`).
-    fn visit_i64<E>(self, v: i64) -> Result<Value, E> {
-        Ok(Value(v as f64))
-    }
-    fn visit_u64<E>(self, v: u64) -> Result<Value, E> {
-        Ok(Value(v as f64))
-    }
-    fn visit_unit<E>(self) -> Result<Value, E> {
-        Ok(Value(f64::NAN))
-    }
-    fn visit_none<E>(self) -> Result<Value, E> {
-        Ok(Value(f64::NAN))
-    }
 }
 
 #[cfg(feature = "serde")]
@@ -141,8 +102,7 @@ impl TryFrom<TableRepr> for Table {
         if t.units.len() > width {
             return Err(format!("the table has {} units for {width} columns", t.units.len()));
         }
-        let rows = t.rows.into_iter().map(|r| r.into_iter().map(|Value(v)| v).collect()).collect();
-        Ok(Table { columns: t.columns, rows, units: t.units })
+        Ok(Table { columns: t.columns, rows: t.rows, units: t.units })
     }
 }
 

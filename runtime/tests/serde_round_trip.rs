@@ -103,33 +103,38 @@ fn a_state_of_other_sizes_is_refused_naming_the_row() {
     assert!(error(&deep).contains("`d2q[1][0]` has 2 entries where the mechanism has 1"), "{}", error(&deep));
 }
 
-/// JSON writes NaN and the infinities as `null`: a table holding them (a synthesis report's
-/// table has NaN where a value was not asked) reads back, `null` as NaN, where it was an
-/// error ("invalid type: null, expected f64"). Whole numbers written by hand read as well.
+/// JSON has no NaN nor infinity: a table holding them (a synthesis report's table has NaN
+/// where a value was not asked) writes them as `"NaN"`, `"inf"` and `"-inf"` and reads them
+/// back as they were, where serde_json's `null` did not read back ("invalid type: null,
+/// expected f64"); `null`, which earlier writers wrote, reads as NaN. Whole numbers written by
+/// hand read as well.
 #[test]
 fn a_table_with_nan_reads_back_from_json() {
     let mut t = Table::new(vec!["valid".into(), "min_transmission".into()]);
     t.push(vec![1.0, f64::NAN]);
     t.push(vec![0.0, f64::INFINITY]);
-    t.push(vec![-0.0, 0.1 + 0.2]);
+    t.push(vec![-0.0, f64::NEG_INFINITY]);
+    t.push(vec![0.5, 0.1 + 0.2]);
     let json = serde_json::to_string(&t).unwrap();
-    assert!(json.contains("[1.0,null]"), "{json}");
+    assert!(json.contains(r#"[1.0,"NaN"],[0.0,"inf"],[-0.0,"-inf"]"#), "{json}");
+    let bits = |t: &Table| {
+        t.rows.iter().flatten().map(|v| if v.is_nan() { u64::MAX } else { v.to_bits() }).collect::<Vec<_>>()
+    };
     let back: Table = serde_json::from_str(&json).unwrap();
-    assert_eq!(back.columns, t.columns);
-    let expected = [1.0, f64::NAN, 0.0, f64::NAN, -0.0, 0.1 + 0.2];
-    for (read, want) in back.rows.iter().flatten().zip(expected) {
-        assert!(read.to_bits() == want.to_bits() || (read.is_nan() && want.is_nan()), "{read} vs {want}");
-    }
+    assert_eq!((&back.columns, bits(&back)), (&t.columns, bits(&t)));
+    let nulls = json.replace(r#""NaN""#, "null").replace(r#""-inf""#, "null").replace(r#""inf""#, "null");
+    let old: Table = serde_json::from_str(&nulls).unwrap_or_else(|e| panic!("{nulls}: {e}"));
+    assert!(old.rows[0][1].is_nan() && old.rows[1][1].is_nan() && old.rows[2][1].is_nan(), "{old:?}");
     let by_hand: Table = serde_json::from_str(r#"{"columns":["n"],"rows":[[3],[-2]]}"#).unwrap();
     assert_eq!(by_hand.column("n"), Some(vec![3.0, -2.0]));
     let err = serde_json::from_str::<Table>(r#"{"columns":["n"],"rows":[["x"]]}"#).unwrap_err().to_string();
-    assert!(err.contains("expected a number, or null for NaN"), "{err}");
+    assert!(err.contains(r#"expected a number, "inf", "-inf", "NaN", or null for NaN"#), "{err}");
 }
 
 /// A state none of whose blocks was factorised (every unknown solved in closed form, or none)
-/// has an infinite `health.min_pivot`, which JSON writes as `null`: it reads back as that
-/// infinity, where it was an error ("invalid type: null, expected f64"). A pivot ratio is never
-/// NaN nor negative, so `null` stands for the infinity alone and the round trip is exact.
+/// has an infinite `health.min_pivot`, which JSON writes as `"inf"`: it reads back as that
+/// infinity, where serde_json's `null` was an error ("invalid type: null, expected f64"). A
+/// pivot ratio is never NaN, so `null`, which earlier writers wrote, reads as the infinity too.
 #[test]
 fn a_state_with_no_pivot_reads_back_from_json() {
     use kinloop_runtime::{Health, Kin, SolveReport};
@@ -146,16 +151,18 @@ fn a_state_with_no_pivot_reads_back_from_json() {
     };
     assert_eq!(k.health.min_pivot, f64::INFINITY);
     let json = serde_json::to_string(&k).unwrap();
-    assert!(json.contains("\"min_pivot\":null"), "{json}");
+    assert!(json.contains(r#""min_pivot":"inf""#), "{json}");
     let back = serde_json::from_str::<Kin<1, 1, 0>>(&json).unwrap_or_else(|e| panic!("{json}: {e}"));
     assert_eq!(back, k);
     // Every value to the bit: the sign of the zero, the subnormal, the largest magnitude.
     assert_eq!(back.q[0].to_bits(), k.q[0].to_bits());
     assert_eq!(back.dq[0][0].to_bits(), k.dq[0][0].to_bits());
     // A finite pivot ratio, and one written by hand as a whole number, read as they are.
-    let finite = json.replace("\"min_pivot\":null", "\"min_pivot\":0.25");
+    let old = json.replace(r#""min_pivot":"inf""#, r#""min_pivot":null"#);
+    assert_eq!(serde_json::from_str::<Kin<1, 1, 0>>(&old).unwrap(), k);
+    let finite = json.replace(r#""min_pivot":"inf""#, r#""min_pivot":0.25"#);
     assert_eq!(serde_json::from_str::<Kin<1, 1, 0>>(&finite).unwrap().health.min_pivot, 0.25);
-    let whole = json.replace("\"min_pivot\":null", "\"min_pivot\":1");
+    let whole = json.replace(r#""min_pivot":"inf""#, r#""min_pivot":1"#);
     assert_eq!(serde_json::from_str::<Kin<1, 1, 0>>(&whole).unwrap().health.min_pivot, 1.0);
 }
 

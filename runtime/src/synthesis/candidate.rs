@@ -29,13 +29,13 @@ pub struct FourBarClass {
     pub class: GrashofClass,
     /// `(s + l) - (p + q)` over the sum of the four lengths: negative for a Grashof linkage,
     /// zero at a change point, positive for a triple rocker.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub margin: f64,
     /// The smallest transmission angle (radians, acute) over the input's whole range of motion:
     /// for an input that turns fully, the smaller at the two positions where the input lies
     /// along the ground line, `acos |b^2 + c^2 - (d -+ a)^2| / 2bc`; zero where the input only
     /// rocks (at its limit positions coupler and follower lie in line).
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub min_transmission: f64,
 }
 
@@ -63,7 +63,7 @@ pub enum Defect {
         /// The first target not reached.
         target: usize,
         /// The input value of the limit position (the first input).
-        #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
         at: f64,
     },
     /// The mechanism cannot be moved from the previous target to target `target` (the sweep
@@ -77,7 +77,7 @@ pub enum Defect {
     /// The smallest transmission angle over the motion checked is below the bound.
     Transmission {
         /// The smallest transmission angle found (radians).
-        #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
         min: f64,
     },
     /// Target `target` is met with an error above
@@ -86,13 +86,13 @@ pub enum Defect {
         /// The first target missed by more than the bound.
         target: usize,
         /// Its error (see [`Candidate::errors`]).
-        #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
         error: f64,
     },
     /// The longest of the bounded links is more than the bound times the shortest.
     LinkRatio {
         /// The ratio found.
-        #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+        #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
         ratio: f64,
     },
 }
@@ -111,36 +111,36 @@ pub struct Candidate {
     /// What kind of start it was found from.
     pub origin: Origin,
     /// The design variables' values, in the problem's order.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub values: Vec<f64>,
     /// Every parameter of the mechanism, in declaration order.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub params: Vec<f64>,
     /// The input values at which the targets are met (the prescribed ones, or the solved free
     /// ones; free angles in cyclic order, over a range of at least a turn, unwrapped by whole
     /// turns into one monotone motion).
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub inputs: Vec<Vec<f64>>,
     /// The placement `[dx, dy, angle, scale]`, where the task has one.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub placement: Option<[f64; 4]>,
     /// The position (unknowns) at each target.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub positions: Vec<Vec<f64>>,
     /// The error at each target.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub errors: Vec<f64>,
     /// The largest error.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub max_error: f64,
     /// The root mean square of the errors.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub rms_error: f64,
     /// What the verification found wrong (empty: a valid design).
     pub defects: Vec<Defect>,
     /// The smallest transmission angle over the motion checked (radians), where the
     /// constraints name the coupler and the follower.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub min_transmission: Option<f64>,
     /// Grashof class and smallest transmission angle over the input's range, where the
     /// constraints name the four links of a four-bar.

@@ -90,7 +90,7 @@ pub struct LocalReport {
     #[cfg_attr(feature = "serde", serde(with = "stop_serde"))]
     pub stop: OptimizerStop,
     /// The residual norm at the end.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub residual: f64,
 }
 

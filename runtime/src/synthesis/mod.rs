@@ -26,8 +26,6 @@ pub mod classical;
 mod constraints;
 mod error;
 mod evolution;
-#[cfg(feature = "serde")]
-mod floats;
 mod halton;
 mod held;
 mod local;

@@ -19,7 +19,7 @@ pub struct SynthesisReport {
     /// The design variables' names, the order of [`Candidate::values`].
     pub variables: Vec<String>,
     /// Their bounds, in the same order.
-    #[cfg_attr(feature = "serde", serde(with = "super::floats"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub bounds: Vec<(f64, f64)>,
     /// The best distinct candidates: valid ones (no defect) first, each group by increasing
     /// RMS error, ties by origin (seeds, then Halton starts, then islands) and then by index.

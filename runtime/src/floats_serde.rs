@@ -1,15 +1,16 @@
-//! Serialize and Deserialize of the numbers of a synthesis report (feature `serde`), exactly
-//! whatever their values.
+//! Serialize and Deserialize of the crate's numbers (feature `serde`), exactly whatever their
+//! values: one convention for every type that holds them (a [`Table`](crate::Table)'s rows, a
+//! state's health, a synthesis report).
 //!
-//! A report holds non-finite numbers where a candidate is degenerate: the ratio of a
-//! zero-length link is infinite, an error that cannot be evaluated is NaN. JSON has neither:
-//! serde_json writes them as `null`, which does not read back as an `f64`, and which in an
-//! `Option<f64>` is `None`. A self-describing format (`is_human_readable`) therefore gets a
-//! non-finite number as the string Rust prints for it (`inf`, `-inf`, `NaN`), so that an
-//! infinity stays an infinity and `Some(inf)` is not read as `None`; a compact binary format
-//! holds the `f64` itself. Reading takes a number, such a string, or `null` (what earlier
-//! writers wrote for any non-finite number) as NaN; where the field is an `Option`, `null` is
-//! `None`, as it always was.
+//! Tables hold NaN where a value is not known, states an infinite smallest pivot where no block
+//! was factorised, synthesis reports infinities and NaN where a candidate is degenerate (the
+//! ratio of a zero-length link). JSON has neither: serde_json writes them as `null`, which does
+//! not read back as an `f64`, and which in an `Option<f64>` is `None`. A self-describing format
+//! (`is_human_readable`) therefore gets a non-finite number as the string Rust prints for it
+//! (`inf`, `-inf`, `NaN`), so that an infinity stays an infinity and `Some(inf)` is not read as
+//! `None`; a compact binary format holds the `f64` itself. Reading takes a number, such a
+//! string, or `null` (what earlier writers wrote for any non-finite number) as NaN; where the
+//! field is an `Option`, `null` is `None`, as it always was.
 
 use serde::de::{DeserializeOwned, Deserializer, Error, Visitor};
 use serde::{Deserialize, Serialize, Serializer};
@@ -132,4 +133,18 @@ pub(crate) fn serialize<T: Floats, S: Serializer>(v: &T, s: S) -> Result<S::Ok, 
 /// For `#[serde(with = "floats")]`.
 pub(crate) fn deserialize<'de, T: Floats, D: Deserializer<'de>>(d: D) -> Result<T, D::Error> {
     T::Repr::deserialize(d).map(T::from_repr)
+}
+
+/// For `#[serde(serialize_with = "floats_serde::serialize_rows")]` on a table's rows: as
+/// [`serialize`], without a copy of the rows (a table can be large).
+pub(crate) fn serialize_rows<S: Serializer>(rows: &[Vec<f64>], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_seq(rows.iter().map(|r| Row(r)))
+}
+
+struct Row<'a>(&'a [f64]);
+
+impl Serialize for Row<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0.iter().map(|&v| Float(v)))
+    }
 }
