@@ -8,7 +8,7 @@ use kinloop::Vec2;
 use kinloop::analysis::OptimizerStop;
 use kinloop::deg;
 use kinloop::synthesis::classical::{
-    BurmesterConfig, FourBar, FunctionMap, Pose, burmester_points, chebyshev_points, freudenstein,
+    BurmesterConfig, FourBar, FunctionMap, Pose, PrecisionPoint, burmester_points, chebyshev_points, freudenstein,
 };
 use kinloop::synthesis::{Design, LocalConfig, Origin, Problem, Search, Task};
 
@@ -26,6 +26,19 @@ fn log10_reference(name: &str) -> f64 {
         .unwrap()
 }
 
+/// The declared four-bar with the ground `d = 1` over `points` (its output angle `psi` a
+/// function of `phi`), its links `a`, `b`, `c` varied from 0.5 to 8, from the positions of
+/// `four_bar` (a closed form's): the problem and the closed form's links as a seed.
+fn function_problem(points: &[PrecisionPoint], four_bar: &FourBar) -> (Problem<FunctionFourBar, 2, 1, 0, 4>, Vec<f64>) {
+    let task = Task::function("psi", points.iter().map(|p| (p.phi, p.psi)));
+    let design = Design::new().var("a", 0.5, 8.0).var("b", 0.5, 8.0).var("c", 0.5, 8.0);
+    let problem = Problem::new(FunctionFourBar::default(), &design, &task)
+        .unwrap()
+        .with_guess([four_bar.couplers[0], four_bar.outputs[0]])
+        .unwrap();
+    (problem, vec![four_bar.links.input, four_bar.links.coupler, four_bar.links.output])
+}
+
 #[test]
 fn freudenstein_s_log10_generator_seeds_a_function_generation_problem() {
     // y = log10 x on [1, 2]: input from 60 degrees through 90, output from 90 through 90;
@@ -34,14 +47,7 @@ fn freudenstein_s_log10_generator_seeds_a_function_generation_problem() {
     let points = map.precision_points(f64::log10, &chebyshev_points(3, 1.0, 2.0).unwrap()).unwrap();
     let g = freudenstein(&points).unwrap();
     let four_bar = FourBar::from_function_generator(&g, &points).unwrap();
-    let seed = vec![four_bar.links.input, four_bar.links.coupler, four_bar.links.output];
-    // The declared four-bar with the ground d = 1, its output angle psi a function of phi.
-    let task = Task::function("psi", points.iter().map(|p| (p.phi, p.psi)));
-    let design = Design::new().var("a", 0.5, 8.0).var("b", 0.5, 8.0).var("c", 0.5, 8.0);
-    let problem = Problem::new(FunctionFourBar::default(), &design, &task)
-        .unwrap()
-        .with_guess([four_bar.couplers[0], four_bar.outputs[0]])
-        .unwrap();
+    let (problem, seed) = function_problem(&points, &four_bar);
     // The seed alone: already at the answer, the local solve stops at once.
     let report = Search::default().with_seeds(vec![seed.clone()]).with_starts(0..0).run(&problem).unwrap();
     assert_eq!(report.seeds, 1);
@@ -92,13 +98,7 @@ fn a_least_squares_function_generator_reaches_the_40_digit_optimum() {
     let four_bar = FourBar::from_function_generator(&freudenstein(&seeds).unwrap(), &seeds).unwrap();
     let xs: Vec<f64> = (0..7).map(|k| 1.0 + k as f64 / 6.0).collect();
     let points = map.precision_points(f64::log10, &xs).unwrap();
-    let task = Task::function("psi", points.iter().map(|p| (p.phi, p.psi)));
-    let design = Design::new().var("a", 0.5, 8.0).var("b", 0.5, 8.0).var("c", 0.5, 8.0);
-    let problem = Problem::new(FunctionFourBar::default(), &design, &task)
-        .unwrap()
-        .with_guess([four_bar.couplers[0], four_bar.outputs[0]])
-        .unwrap();
-    let seed = vec![four_bar.links.input, four_bar.links.coupler, four_bar.links.output];
+    let (problem, seed) = function_problem(&points, &four_bar);
     let report = Search::default().with_seeds(vec![seed]).with_starts(0..8).run(&problem).unwrap();
     let best = report.best().unwrap();
     assert_eq!(best.local.stop, OptimizerStop::Converged, "{:?}", best.local);
