@@ -542,6 +542,50 @@ fn coincident_joints_are_singular_through_the_closed_form_and_newton() {
     assert!(k.is_ok(), "{k:?}");
 }
 
+/// A four-bar of unit crank, rocker and frame whose coupler is `1e-300` or `1e-20` of them: at a
+/// crank angle of `fl(π/3)` the crank pin is `1 - 9.9e-17` from the rocker's pivot (mpmath at
+/// 50 digits), so no triangle closes exactly, yet every coupler angle leaves the loop open by at
+/// most `5e-17` of its size, far within the residual tolerance: the coupler's angle is not
+/// determined, a singular position (positions and analogs alike), in every unit. It was "cannot
+/// be assembled", its residual `0`. At `π/3 + 1e-12` the pin is `2 sin(φ/2) - 1 = 8.7e-13` past
+/// the rocker's reach, `4.3e-13` of the size: within the default tolerance `1e-12`, singular
+/// too; within none of `1e-14`, where it is no assembly by that gap, `(e - 1) / (e + 1)` for `e =
+/// 2 sin(φ/2)` (to `1e-3` of it: `e - 1` is known to its rounding, `1e-16` of `8.7e-13`).
+#[test]
+fn a_coupler_shorter_than_the_tolerance_of_its_loop_is_not_determined() {
+    let guess = [0.5, 1.5];
+    for scale in [1.0, 1e-3, 1e3] {
+        for coupler in [1e-300, 1e-20] {
+            let m = kinloop_fixtures::FourBar { a: scale, b: coupler * scale, c: scale, d: scale };
+            for phi in [PI / 3.0, PI / 3.0 + 1e-12] {
+                let at = format!("scale {scale}, coupler {coupler:e}, phi {phi}");
+                let cfg = NewtonConfig::default();
+                let errors =
+                    [m.kinematics_flat(&[phi], &guess, &cfg).err(), m.position_flat(&[phi], &guess, &cfg).err()];
+                for e in errors {
+                    match e {
+                        Some(e @ Error::Singular { .. }) => {
+                            assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
+                            assert!(!e.to_string().contains("cannot be assembled"), "{at}: {e}");
+                        }
+                        other => panic!("{at}: {other:?}"),
+                    }
+                }
+            }
+            let phi = PI / 3.0 + 1e-12;
+            let strict = NewtonConfig::default().with_residual_tol(1e-14);
+            let e = 2.0 * (phi / 2.0).sin();
+            let want = (e - 1.0) / (e + 1.0);
+            match m.position_flat(&[phi], &guess, &strict) {
+                Err(Error::NoAssembly { residual, .. }) => {
+                    assert_close!(residual, want, rel = 1e-3, "scale {scale}, coupler {coupler:e}")
+                }
+                other => panic!("scale {scale}, coupler {coupler:e}: {other:?}"),
+            }
+        }
+    }
+}
+
 /// Towards a limit position of its input, where its Jacobian becomes singular, the Newton twin
 /// (whose later evaluations rotate their sines and cosines: `NearTrig`) succeeds wherever the
 /// closed form does, down to pivot ratios below 1e-7 (no decision of the iteration flips to a

@@ -153,18 +153,39 @@ fn unreached(r: f64, c: f64) -> f64 {
     (c.abs() - r) / (c.abs() + r)
 }
 
-/// A dyad's circle intersection's failure `fail`, with the residual of one that cannot be
-/// assembled ([`dyad_gap`]) in the dyad's lengths, `links` `[e0, e1, l0², l1²]`, rather than in
-/// its equation's coefficients (products of two lengths, see [`dyad_of`]).
+/// A dyad's circle intersection's failure `fail`, judged in the dyad's lengths, `links` `[e0,
+/// e1, l0², l1²]`, rather than in its equation's coefficients (products of two lengths, see
+/// [`dyad_of`]): where every angle of its first link closes it within the residual tolerance
+/// of its size ([`turns_freely`]), the angle is not determined, singular as [`undetermined`];
+/// otherwise one that cannot be assembled, with the residual [`dyad_gap`].
 #[cold]
 #[inline(never)]
-fn dyad_failure(fail: BlockFailure, links: [f64; 4]) -> BlockFailure {
+fn dyad_failure(fail: BlockFailure, links: [f64; 4], cfg: &NewtonConfig) -> BlockFailure {
     match fail {
+        BlockFailure::NoAssembly { .. } if turns_freely(links, cfg) => undetermined(cfg),
         BlockFailure::NoAssembly { row, iterations, evaluations, .. } => {
             BlockFailure::NoAssembly { row, iterations, evaluations, residual: dyad_gap(links) }
         }
         other => other,
     }
+}
+
+/// Whether a dyad of `links` `[e0, e1, l0², l1²]` closes within the residual tolerance of its
+/// size `l0 + l1 + |e|` (as [`touching`] takes it, at least `16 eps`) at every angle of its
+/// first link: the distance from the second link's centre to the first link's end ranges over
+/// `[||e| - l0|, |e| + l0]`, so the worst miss is the larger of `||e| - l0| - l1` and `|e| + l0 -
+/// l1` in magnitude. It is at least the shorter of `l0` and `|e|`, so this holds only where the
+/// first link, or the centres' offset, is within the tolerance of nothing beside the others:
+/// a coupler of `1e-300` on a four-bar of size 1, whose crank pin lies within rounding of the
+/// rocker's reach. [`touching`]'s allowance, relative to the equation's own `|c|` (about `l0
+/// |e|`), is then the tolerance of the short link, and such a dyad, closed to the rounding of
+/// its size (`5e-17`), was reported as one that cannot be assembled, its gap `0`.
+fn turns_freely([e0, e1, l0_sq, l1_sq]: [f64; 4], cfg: &NewtonConfig) -> bool {
+    let (l0, l1, e) = (l0_sq.sqrt(), l1_sq.sqrt(), e0.hypot(e1));
+    let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
+    let worst = ((e - l0).abs() - l1).abs().max((e + l0 - l1).abs());
+    // Written so that a NaN fails.
+    worst <= tol * (l0 + l1 + e)
 }
 
 /// How far a dyad's two links (of lengths `l0`, `l1`) fall short of closing the triangle with
@@ -277,7 +298,7 @@ fn folded_dyad_off_range(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<f64, BlockFailure> {
-    folded_off_range(d2, r2, a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links))
+    folded_off_range(d2, r2, a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links, cfg))
 }
 
 /// [`folded_root_offset`] where its test fails: [`touching`] for a normal `r2`; otherwise the
@@ -409,7 +430,7 @@ fn dyad_offset_cancelled(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<f64, BlockFailure> {
-    root_offset(dyad_d2(d2, r2, links), r2, c, flip, cfg).map_err(|f| dyad_failure(f, links))
+    root_offset(dyad_d2(d2, r2, links), r2, c, flip, cfg).map_err(|f| dyad_failure(f, links, cfg))
 }
 
 /// [`dyad_of`] where `a² + b²` is not a normal number: [`dyad_roots_rescaled`], a failure's
@@ -424,7 +445,7 @@ fn dyad_of_rescaled(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<(f64, f64), BlockFailure> {
-    dyad_roots_rescaled(a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links))
+    dyad_roots_rescaled(a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links, cfg))
 }
 
 /// `d2 = r2 - c²` of a dyad's circle intersection, recomputed from the triangle of its lengths
@@ -802,6 +823,43 @@ mod tests {
                         }
                         other => panic!("size {k:e}: {other:?}"),
                     }
+                }
+            }
+        }
+    }
+
+    /// A dyad whose first link is within the tolerance of nothing beside the others closes
+    /// within the tolerance at every angle of it, which is then not determined: a coupler of
+    /// `1e-300` or `1e-20` (whose `a² + b²` is subnormal, rescaled, or normal) from the pin of
+    /// a unit crank at `fl(π/3)`, `1 - 9.9e-17` from the pivot of a unit rocker (mpmath at 50
+    /// digits: no exact triangle, yet every coupler angle leaves the dyad open by at most
+    /// `5e-17` of its size, far within the tolerance `1e-12`). Singular, with the configured
+    /// tolerance, whichever path solves it; it was "cannot be assembled" with a gap of `0`.
+    /// Where the pin misses the rocker's reach by `2e-9` of it, far beyond the tolerance, no
+    /// assembly still, with the gap `(1 - |e|) / (1 + |e|)` (the coupler's length below its
+    /// rounding).
+    #[test]
+    fn a_dyad_whose_short_link_closes_it_at_every_angle_is_singular() {
+        let cfg = NewtonConfig::default().with_singular_tol(1e-9);
+        let phi = PI / 3.0;
+        let pin = [phi.cos() - 1.0, phi.sin()];
+        for (miss, l0) in [(1.0, 1e-300), (1.0, 1e-20), (1.0 - 2e-9, 1e-300), (1.0 - 2e-9, 1e-20)] {
+            let Dyad { a, b, c, links, r2, d2 } = Dyad::of([pin[0] * miss, pin[1] * miss], l0, 1.0);
+            let results = [
+                dyad_of([a, b, links[0], links[1], links[2], links[3]], c, false, &cfg).map(|(cq, _)| cq),
+                folded_dyad_root_offset(d2, r2, a, b, c, links, false, &cfg),
+            ];
+            let e = links[0].hypot(links[1]);
+            for got in results {
+                match got {
+                    Err(BlockFailure::Singular { pivot_ratio, tolerance, .. }) if miss == 1.0 => {
+                        assert_eq!((pivot_ratio, tolerance), (0.0, 1e-9), "{l0:e}");
+                    }
+                    Err(BlockFailure::NoAssembly { residual, .. }) if miss < 1.0 => {
+                        let want = (1.0 - e) / (1.0 + e);
+                        assert!((residual - want).abs() <= 1e-15, "{l0:e}: {residual} against {want}");
+                    }
+                    other => panic!("miss {miss}, coupler {l0:e}: {other:?}"),
                 }
             }
         }
