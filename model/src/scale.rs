@@ -19,8 +19,8 @@ use crate::at::Jacobian;
 use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
-    AtLimit, BlockEval, BlockFailure, SolveReport, closes_in_own_magnitudes, in_block, solve_blocks, to_rescue,
-    turns_culprit, whole_position,
+    AtLimit, BlockEval, BlockFailure, OwnJacobian, SolveReport, closes_in_own_magnitudes, in_block,
+    singular_in_own_magnitudes, solve_blocks, to_rescue, turns_culprit, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -100,7 +100,11 @@ impl Model {
         }
         match whole!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16) {
             // Its loops closed in the position's own magnitudes, as the compiled rescue tests.
-            Some(Ok(solved)) if self.closes(x, &solved.0, cfg) => Ok(solved),
+            Some(Ok(solved)) if self.closes(x, &solved.0, cfg) => match self.singular_at(x, &solved, cfg, at_limit) {
+                // Singular in its own magnitudes, as the compiled rescue tests.
+                Some(fail) => Err(self.whole_failure(fail)),
+                None => Ok(solved),
+            },
             Some(Ok(_)) => Err(error),
             Some(Err(fail)) => Err(self.whole_failure(fail)),
             // More unknowns than the dense sizes: not solved again.
@@ -113,6 +117,29 @@ impl Model {
     fn closes(&mut self, x: &[f64], q: &[f64], cfg: &NewtonConfig) -> bool {
         let mut own = Jacobian::default();
         self.jacobian(x, q, &mut own).is_ok() && closes_in_own_magnitudes(&own.f, &own.scale, cfg)
+    }
+
+    /// For a solve of the positions alone (`at_limit` a position), the first block singular at
+    /// the position `solved` reached at `x`, in the position's own magnitudes
+    /// (`singular_in_own_magnitudes`, the compiled rescue's test).
+    fn singular_at(
+        &mut self,
+        x: &[f64],
+        solved: &(Vec<f64>, SolveReport),
+        cfg: &NewtonConfig,
+        at_limit: AtLimit,
+    ) -> Option<BlockFailure> {
+        let (q, report) = solved;
+        if at_limit != AtLimit::Position {
+            return None;
+        }
+        let blocks = solve_blocks(self.block_rows_cols.iter().cloned(), &self.closed_form_angles);
+        let own = |q: &[f64]| {
+            let mut at = Jacobian::default();
+            self.jacobian(x, q, &mut at).ok()?;
+            Some(OwnJacobian { j: at.j, scale: at.scale, unit: at.unit })
+        };
+        singular_in_own_magnitudes(q, own, &blocks, report.residual, report.iterations, cfg)
     }
 
     /// Whether the failure `error` from `guess` is an angle's guessed too many turns out, as its

@@ -444,6 +444,66 @@ fn positions_alone_of_a_four_bar_whose_crank_cannot_close_fail_alike_at_every_sc
     }
 }
 
+/// The sizes at which a singular position is tested: size 1, inside the closed forms' sizes near
+/// their ends (`1e±140`), and beyond them (`1e±150` to `1e±300`, solved again by Newton over the
+/// whole system).
+const SINGULAR_SIZES: [f64; 9] = [1.0, 1e-140, 1e140, 1e-150, 1e150, 1e-160, 1e160, 1e-300, 1e300];
+
+/// The positions alone at `x` from `guess` of a mechanism singular there: a singular failure of
+/// its only block from the model and from the compiled mechanism, at the same location. (Their
+/// pivot ratios may differ in the last digits at ordinary sizes: the slotted lever's closed form
+/// takes the crank's cosine at `-pi/2`, a rounding residue of `6e-17`, from each one's own
+/// trigonometry.)
+fn singular_alike<M: Mechanism<2, 1, NO>, const NO: usize>(
+    compiled: &M,
+    model: &mut Model,
+    x: [f64; 1],
+    guess: [f64; 2],
+    what: &str,
+) {
+    use kinloop_model::StepFailure;
+    use kinloop_runtime::generated::BlockFailure;
+    let cfg = NewtonConfig::default();
+    let e = model.positions(&x, &guess, &cfg).map(|q| q.to_vec()).unwrap_err();
+    let singular =
+        matches!(e, StepError::Block { block: 0, failure: StepFailure::Block(BlockFailure::Singular { .. }) });
+    assert!(singular, "{what}: {e:?}");
+    let explained = model.explain(&x, &guess, &cfg, e);
+    let c_err = compiled.position_flat(&x, &guess, &cfg).map(|(q, _)| q).unwrap_err();
+    assert!(matches!(c_err, Error::Singular { .. }), "{what}: {c_err:?}");
+    assert!(matches!(explained, Error::Singular { .. }), "{what}: {explained:?}");
+    assert_eq!(format!("{:?}", c_err.location()), format!("{:?}", explained.location()), "{what}");
+}
+
+/// The positions alone of a four-bar whose dyad's centres are `1e-13` of its links apart at
+/// `phi = 0` (`a = 1`, `b = c = 2`, `d = 1 + 1e-13`), and of the slotted lever whose lever is
+/// `1e-13` of its loop (`r = 1`, `d = 1 + 1e-13` at `phi = -pi/2`): singular at every size,
+/// compiled and at run time alike, as the closed forms find them at size 1 (a pivot ratio of
+/// `5e-14`). Beyond the closed forms' sizes the rescue took Newton's singular failure there for a
+/// limit position and returned a point of the family of near-roots about it, with no error and a
+/// different one at each size: the four-bar at `beta = gamma = 1.0000000004` (`1e-150`) to
+/// `1.0000000004083` (`1e160`), its loop open by `7e-14` of a link, where its root is
+/// `(pi/2 - 2.5e-14, pi/2 + 2.5e-14)` (`cos beta = (d - a) / 4`, `gamma = pi - beta`, checked
+/// with mpmath at 50 digits), `0.57` rad off; the lever at `theta` `1.2539` to `1.2552` where
+/// its root is `1.5702` (the crank pin's direction from the pivot).
+#[test]
+fn positions_alone_at_a_singular_position_are_singular_at_every_scale() {
+    for k in SINGULAR_SIZES {
+        let [a, b, c, d] = [1.0, 2.0, 2.0, 1.0 + 1e-13].map(|v| v * k);
+        let compiled = fx::FourBar { a, b, c, d };
+        let mut model = read(fx::FOUR_BAR_TEXT);
+        set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+        singular_alike(&compiled, &mut model, [0.0], [0.5, 1.5], &format!("four-bar at size {k:e}"));
+
+        let [r, d, l] = [1.0, 1.0 + 1e-13, 4.0].map(|v| v * k);
+        let compiled = fx::SlottedLever { r, d, l };
+        let mut model = read(fx::SLOTTED_LEVER_TEXT);
+        set(&mut model, &[("r", r), ("d", d), ("l", l)]);
+        let phi = -std::f64::consts::FRAC_PI_2;
+        singular_alike(&compiled, &mut model, [phi], [k, 0.3], &format!("slotted lever at size {k:e}"));
+    }
+}
+
 kinloop_fixtures::declare! {
     /// A rocker driven by a cylinder whose length is the input: a dyad between two fixed pivots
     /// on the x axis, its second coefficient folded to zero.

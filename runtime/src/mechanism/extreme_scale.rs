@@ -39,9 +39,10 @@
 //! position where the root it reaches has a singular Jacobian, an equation not finite where it
 //! leaves its domain. (Save for a solve of the positions alone at a limit position of the input, a
 //! root Newton reaches only linearly: the closed form gives its double root there at size 1, and so
-//! does the rescue, see [`whole_position`].) Where the iterations run out while the residual still
-//! falls, Newton cannot tell a mechanism that does not assemble from one it did not reach, and says
-//! so (no convergence). Its tests are made in the magnitudes of the equations and unknowns, so this
+//! does the rescue, see [`whole_position`]; not at a singular position that is no limit position,
+//! where the closed form fails as singular, see [`singular_in_own_magnitudes`].) Where the
+//! iterations run out while the residual still falls, Newton cannot tell a mechanism that does
+//! not assemble from one it did not reach, and says so (no convergence). Its tests are made in the magnitudes of the equations and unknowns, so this
 //! is the error of the same mechanism at every size. A caller's bad value or an invalid
 //! configuration explains the failure at any size: their error stands. Where Newton solves but the
 //! analogs at its position fail, theirs.
@@ -61,6 +62,7 @@
 use crate::error::Error;
 use crate::kin::Jac;
 use crate::kinds::QuantityKind;
+use crate::solvers::lu::Lu;
 use crate::solvers::newton::{
     BlockEval, BlockFailure, Magnitudes, NewtonConfig, NewtonStop, SolveReport, Solved, newton,
 };
@@ -164,6 +166,126 @@ pub fn closes_in_own_magnitudes(f: &[f64], scale: &[f64], cfg: &NewtonConfig) ->
     f.iter().all(|f| !f.is_nan()) && rho <= 1000.0 * cfg.residual_tol.max(16.0 * f64::EPSILON)
 }
 
+/// A mechanism's Jacobian at a position in that position's own magnitudes, as
+/// [`singular_in_own_magnitudes`] reads it: `j` row by row (`j[e * n + u]` for `n` unknowns), its
+/// equations' magnitudes `scale` and its unknowns' units `unit` there.
+#[doc(hidden)]
+pub struct OwnJacobian {
+    /// The Jacobian, row by row.
+    pub j: Vec<f64>,
+    /// The equations' magnitudes.
+    pub scale: Vec<f64>,
+    /// The unknowns' units (one that is not finite and positive counts as one).
+    pub unit: Vec<f64>,
+}
+
+/// How far along its null direction, in the block's dimensionless unknowns (radians, fractions
+/// of a loop's size), a block singular at a position is tested again (see
+/// [`singular_in_own_magnitudes`]). At a limit position the smallest pivot grows in proportion
+/// to the distance from the fold, at a rate set by the fold's curvature: `2.1e-5` at `1e-4` on
+/// the rocker-driven four-bar of the limit-position tests (rocker 3, coupler 3.5, crank 1, frame
+/// 4, by mpmath), `2e5` times `singular_tol`'s default; about a family of near-roots it does not
+/// grow at all.
+const FOLD_STEP: f64 = 1e-4;
+
+/// The first block of `blocks` singular at the position `q` Newton over the whole system reached
+/// from a singular failure taken for a limit position ([`AtLimit::Position`]), in that position's
+/// own magnitudes, `own(q)` its Jacobian there ([`OwnJacobian`]; `None` where it cannot be
+/// evaluated): the failure the closed forms give at size 1, or `None`. The failure names the
+/// block's first equation (a row of the whole system) and carries the position's scaled
+/// residual `residual`, its solve's `iterations` and the block's pivot ratio.
+///
+/// A block's pivot ratio is that of its Jacobian equilibrated as the generated Newton solver
+/// equilibrates a block's (rows by their magnitudes, columns by their units), against
+/// `cfg.singular_tol`. Below it the block is singular unless the position is a limit position:
+/// there, too, the Jacobian is singular (at the fold itself, and the position Newton reaches is
+/// only `sqrt(eps)` of the size from it, or closer), but a step of `1e-4` along the block's null
+/// direction either way makes the pivot ratio far larger than the tolerance. A position about which it stays
+/// singular is one of a family of near-roots, none determined by the data: a dyad whose centres
+/// are `1e-13` of its links apart (turning about them) or a slotted lever whose lever is `1e-13`
+/// of its loop (the rocker turning about the crank pin), both with a pivot ratio of `5e-14`. The
+/// closed forms call those singular at size 1 (`check_centres`, `check_lever`); Newton's least
+/// residual was any point of the family, a different one at each size (`1e-3` rad apart).
+///
+/// `blocks` that do not partition the system into blocks of at most 16 unknowns are taken as one
+/// block of the whole system, of at most 16; a larger one is not tested.
+#[doc(hidden)]
+pub fn singular_in_own_magnitudes(
+    q: &[f64],
+    mut own: impl FnMut(&[f64]) -> Option<OwnJacobian>,
+    blocks: &[Block],
+    residual: f64,
+    iterations: u32,
+    cfg: &NewtonConfig,
+) -> Option<BlockFailure> {
+    let n = q.len();
+    let whole = [Block { rows: (0..n).collect(), cols: (0..n).collect(), closed_form: false }];
+    let blocks = if partitions_n(blocks, n) { blocks } else { &whole[..] };
+    let at_q = own(q)?;
+    blocks.iter().filter(|b| b.cols.len() <= 16).find_map(|b| {
+        let lu = block_lu(&at_q, b);
+        let pivot_ratio = lu.pivot_ratio();
+        if pivot_ratio >= cfg.singular_tol || at_fold(q, &at_q, b, &lu, cfg, &mut own) {
+            return None;
+        }
+        Some(BlockFailure::Singular {
+            row: b.rows.first().copied().unwrap_or(0),
+            iterations,
+            residual,
+            pivot_ratio,
+            tolerance: cfg.singular_tol,
+        })
+    })
+}
+
+/// Whether `block`, singular at `q` (its Jacobian `at_q`, factorised as `lu`), is regular by
+/// `cfg.singular_tol` at [`FOLD_STEP`] along its null direction on either side: a limit position.
+fn at_fold(
+    q: &[f64],
+    at_q: &OwnJacobian,
+    block: &Block,
+    lu: &Lu<16>,
+    cfg: &NewtonConfig,
+    own: &mut impl FnMut(&[f64]) -> Option<OwnJacobian>,
+) -> bool {
+    let w = lu.null_direction();
+    let largest = w.iter().fold(0.0f64, |m, w| m.max(w.abs()));
+    if !(largest > 0.0 && largest < f64::INFINITY) {
+        return false;
+    }
+    [FOLD_STEP, -FOLD_STEP].into_iter().any(|step| {
+        let mut moved = q.to_vec();
+        for (i, &u) in block.cols.iter().enumerate() {
+            moved[u] += step * w[i] / largest * unit_of(&at_q.unit, u);
+        }
+        own(&moved).is_some_and(|there| block_lu(&there, block).pivot_ratio() >= cfg.singular_tol)
+    })
+}
+
+/// The unit of unknown `u` in `unit`: one where it is not finite and positive.
+fn unit_of(unit: &[f64], u: usize) -> f64 {
+    if unit[u] > 0.0 && unit[u].is_finite() { unit[u] } else { 1.0 }
+}
+
+/// The factorisation of `block`'s Jacobian in `own` (of at most 16 unknowns) equilibrated by its
+/// rows' magnitudes and its unknowns' units, padded to 16 with rows `z_i = 0` (pivot 1), as
+/// [`solve_block`] pads it.
+fn block_lu(own: &OwnJacobian, block: &Block) -> Lu<16> {
+    let (rows, cols) = (&block.rows[..], &block.cols[..]);
+    let n = own.scale.len();
+    let sub: [[f64; 16]; 16] = core::array::from_fn(|i| {
+        core::array::from_fn(|k| match (rows.get(i), cols.get(k)) {
+            (Some(&r), Some(&u)) => own.j[r * n + u],
+            (None, None) => f64::from(u8::from(i == k)),
+            _ => 0.0,
+        })
+    });
+    let row_scale = core::array::from_fn(|i| rows.get(i).map_or(1.0, |&r| own.scale[r]));
+    // `factor_scaled` divides each column by its scale: by one over the unit, as `z = q / unit`.
+    let col_scale = core::array::from_fn(|k| cols.get(k).map_or(1.0, |&u| 1.0 / unit_of(&own.unit, u)));
+    Lu::<16>::factor_scaled(&sub, row_scale, col_scale)
+}
+
 /// The Jacobian at `guess` when the failure is to be rescued ([`to_rescue`]: its magnitudes
 /// outside [`CLOSED_FORM_SIZES`], or the failure `overflowed`). Its own function, the Jacobian
 /// moved to the heap: for a large mechanism it is big (512 KiB for 256
@@ -210,6 +332,17 @@ where
     let own = (m.jacobian)(&q);
     if !closes_in_own_magnitudes(&own.f, &own.scale, cfg) {
         return Err(error);
+    }
+    // The analogs' solve tests its own pivots; the positions alone are tested here.
+    let own_at = |q: &[f64]| {
+        let jq = (m.jacobian)(q.try_into().ok()?);
+        let j = jq.j.iter().flatten().copied().collect();
+        Some(OwnJacobian { j, scale: jq.scale.to_vec(), unit: jq.unit.to_vec() })
+    };
+    if m.at_limit == AtLimit::Position
+        && let Some(fail) = singular_in_own_magnitudes(&q, own_at, &m.blocks, report.residual, report.iterations, cfg)
+    {
+        return Err((m.fail)(fail));
     }
     (m.at)(&q, report)
 }
@@ -399,9 +532,14 @@ fn in_order<const N: usize>(
 /// Whether `blocks` partition a system of `N` equations and unknowns into square blocks of 1
 /// to 16 unknowns: every row and every column in exactly one block.
 fn partitions<const N: usize>(blocks: &[Block]) -> bool {
-    let mut rows = [false; N];
-    let mut cols = [false; N];
-    let mark = |seen: &mut [bool; N], i: usize| i < N && !core::mem::replace(&mut seen[i], true);
+    partitions_n(blocks, N)
+}
+
+/// [`partitions`] for a system of `n` equations and unknowns.
+fn partitions_n(blocks: &[Block], n: usize) -> bool {
+    let mut rows = vec![false; n];
+    let mut cols = vec![false; n];
+    let mark = |seen: &mut Vec<bool>, i: usize| i < n && !core::mem::replace(&mut seen[i], true);
     let square = blocks.iter().all(|b| {
         (1..=16).contains(&b.cols.len())
             && b.rows.len() == b.cols.len()

@@ -506,6 +506,26 @@ impl<const N: usize> Lu<N> {
         }
     }
 
+    /// A direction `w` (in the equilibrated matrix's columns) that the equilibrated matrix maps
+    /// to about `0` when its smallest pivot is: `U w = 0` with that pivot taken for zero, `w` one
+    /// at its column and zero beyond it, the columns before it by back-substitution (their
+    /// pivots the larger). Not finite where an earlier pivot is zero or not finite too.
+    pub(crate) fn null_direction(&self) -> [f64; N] {
+        let mut k = 0;
+        for r in 1..N {
+            if self.lu[r][r].abs() < self.lu[k][k].abs() {
+                k = r;
+            }
+        }
+        let mut w = [0.0; N];
+        w[k] = 1.0;
+        for r in (0..k).rev() {
+            let acc = (r + 1..=k).fold(0.0, |acc, c| acc - self.lu[r][c] * w[c]);
+            w[r] = acc / self.lu[r][r];
+        }
+        w
+    }
+
     /// Smallest pivot of the equilibrated matrix, in `[0, ~1]`: `0` when singular. `NaN`
     /// inputs give `0`.
     #[inline(always)]
@@ -708,6 +728,22 @@ pub(crate) fn largest<const M: usize>(v: [f64; M]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A matrix of rank 2 whose second column is the singular one (`c1 = c0 + c2`): the
+    /// direction the factorisation gives is its null vector `(1, -1, 1)` up to its rounding, and
+    /// for a regular 2x2 one the smallest pivot's column.
+    #[test]
+    fn the_null_direction_is_the_singular_columns() {
+        let j = [[1.0, 3.0, 2.0], [4.0, 9.0, 5.0], [7.0, 15.0, 8.0]];
+        let w = Lu::factor(&j, [1.0; 3]).null_direction();
+        let scaled = w.map(|v| v / w[0]);
+        let want = [1.0, -1.0, 1.0];
+        for (v, want) in scaled.iter().zip(want) {
+            assert!((v - want).abs() <= 8.0 * f64::EPSILON, "{scaled:?}");
+        }
+        let w = Lu::factor(&[[2.0, 0.0], [0.0, 1e-12]], [1.0; 2]).null_direction();
+        assert_eq!(w, [0.0, 1.0]);
+    }
 
     /// A positive scale below `1 / f64::MAX` has an infinite reciprocal: the set is degenerate
     /// and that reciprocal 0 (an infinite one would turn a zero residual into NaN), as for a
