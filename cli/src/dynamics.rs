@@ -8,6 +8,7 @@
 //! in the unit of the speed (`time unit`): with kg, m and s, torques in N m and forces in N.
 
 use crate::exit::usage;
+use crate::own_columns::{self, Own};
 use crate::solve::{in_units, named, point};
 use crate::sweep::sample_as_given;
 use crate::{Failed, exit, samples};
@@ -90,14 +91,9 @@ pub(crate) fn check_crank(model: &Model, command: &str, columns: &[&str]) -> Res
             model.inputs().join(", ")
         )));
     }
-    let input = &model.inputs()[0];
-    if columns.contains(&input.as_str()) {
-        return Err(usage(format!(
-            "kinloop {command} writes a column `{input}` of its own beside the input's: rename the input `{input}` \
-             of {name} in its declaration, or its table would name two columns `{input}`"
-        )));
-    }
-    Ok(())
+    let command = format!("kinloop {command}");
+    let own = Own { command: &command, columns, beside: "input's", rename_to: "", written: "its table" };
+    own_columns::check(&own, name, [("input", model.inputs()[0].as_str())])
 }
 
 /// The frame point of `--about`: two finite numbers.

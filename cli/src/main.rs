@@ -56,6 +56,7 @@ mod extremes;
 mod names;
 mod numbers;
 mod output;
+mod own_columns;
 mod params;
 mod progress;
 mod report;
@@ -193,7 +194,7 @@ enum Command {
         #[arg(long)]
         deg: bool,
         /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
-        /// listing them on standard error.
+        /// listing them on standard error; an input or unknown named `kind` or `tau` is refused.
         #[arg(long, value_name = "FILE")]
         events: Option<PathBuf>,
     },
@@ -230,7 +231,7 @@ enum Command {
         #[arg(long)]
         deg: bool,
         /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
-        /// listing them on standard error.
+        /// listing them on standard error; an input or unknown named `kind` or `tau` is refused.
         #[arg(long, value_name = "FILE")]
         events: Option<PathBuf>,
     },

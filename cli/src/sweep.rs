@@ -4,6 +4,7 @@
 
 use crate::csv_rows::CsvRows;
 use crate::numbers::between;
+use crate::own_columns::{self, Own};
 use crate::solve::{degrees, factors, model_inputs, parse_inputs, solve_failed, units};
 use crate::{Failed, exit, output, progress, samples};
 use kinloop_model::Model;
@@ -32,6 +33,7 @@ pub struct Request<'a> {
 /// and fails. One whose start cannot be solved writes no table, not even its header.
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     samples::check(req.samples)?;
+    events_columns(model, "sweep", req.events)?;
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let ni = model.inputs().len();
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
@@ -265,6 +267,29 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
     )))
 }
 
+/// The columns the events' file writes before the inputs and the unknowns.
+const EVENT_COLUMNS: [&str; 2] = ["kind", "tau"];
+
+/// Refuses an input or unknown named as one of the events' file's own columns where `kinloop
+/// COMMAND` (`sweep`, `trace`) is to write one (`events`): its header would name two columns
+/// alike (`kind,tau,tau [rad]`). Written on standard error, the events name no columns.
+pub(crate) fn events_columns(model: &Model, command: &str, events: Option<&Path>) -> Result<(), Failed> {
+    if events.is_none() {
+        return Ok(());
+    }
+    let command = format!("kinloop {command} --events");
+    let own = Own {
+        command: &command,
+        columns: &EVENT_COLUMNS,
+        beside: "inputs' and unknowns'",
+        rename_to: "",
+        written: "the events file",
+    };
+    let inputs = model.inputs().iter().map(|n| ("input", n.as_str()));
+    let unknowns = model.unknowns().iter().map(|n| ("unknown", n.as_str()));
+    own_columns::check(&own, model.name(), inputs.chain(unknowns))
+}
+
 /// The events as CSV (`kind,tau,` the inputs and the unknowns, in the sweep's units, named
 /// `name [unit]` as the table's columns) into `file` (`--events`), or one line each on
 /// standard error.
@@ -306,7 +331,7 @@ pub(crate) fn write_events(
     let header = header.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     let mut line = Vec::new();
     header.write_csv(&mut line)?;
-    write!(w, "kind,tau,{}", String::from_utf8_lossy(&line))?;
+    write!(w, "{},{}", EVENT_COLUMNS.join(","), String::from_utf8_lossy(&line))?;
     for e in events {
         let values: Vec<String> =
             e.x.iter().chain(&e.q).zip(&kinds[..ni + e.q.len()]).map(|(v, k)| angle(*k, *v).to_string()).collect();

@@ -8,6 +8,7 @@
 //! a table or as CSV, each with its defects.
 
 use crate::numbers::number;
+use crate::own_columns::{self, Own};
 use crate::{Failed, exit, params, progress};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::paths::sweep::MAX_TURNS;
@@ -183,17 +184,16 @@ fn not_given_twice(design: &Design, params: Option<&str>) -> Result<(), Failed> 
 }
 
 /// Refuses a design variable named as one of the columns the candidates are written with
-/// beside it: the header would name two columns alike, which a CSV reader finds by name (the
-/// runtime's reader refuses such a header; others take the first). Before the run, not after it.
+/// beside it, before the run.
 fn not_a_column(design: &Design, mechanism: &str) -> Result<(), Failed> {
-    match design.variables().iter().find(|v| COLUMNS.contains(&v.name.as_str())) {
-        Some(v) => Err(exit::usage(format!(
-            "kinloop synth writes a column `{0}` of its own beside the design variables': rename the parameter \
-             `{0}` of {mechanism} in its declaration to vary it, or the candidates would name two columns `{0}`",
-            v.name
-        ))),
-        None => Ok(()),
-    }
+    let own = Own {
+        command: "kinloop synth",
+        columns: &COLUMNS,
+        beside: "design variables'",
+        rename_to: " to vary it",
+        written: "the candidates",
+    };
+    own_columns::check(&own, mechanism, design.variables().iter().map(|v| ("parameter", v.name.as_str())))
 }
 
 /// `lo..hi` as two finite numbers, lower first.

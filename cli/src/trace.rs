@@ -5,7 +5,7 @@
 
 use crate::csv_rows::CsvRows;
 use crate::solve::{degrees, model_inputs, solve_failed, units};
-use crate::sweep::{range_too_long, write_events};
+use crate::sweep::{events_columns, range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
@@ -49,6 +49,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             samples::MAX_SAMPLES
         )));
     }
+    events_columns(model, "trace", req.events)?;
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let ni = model.inputs().len();
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;

@@ -299,3 +299,48 @@ fn an_output_that_is_not_finite_fails_the_trace() {
     }
     let _ = std::fs::remove_file(&file);
 }
+
+/// A four-bar's input or unknown named as a column the events' file writes of its own (`kind`,
+/// `tau`) is a usage error naming it, before `sweep` or `trace` runs, where `--events` is
+/// given: the file's header named two columns alike (`kind,tau,tau [rad],beta [rad],...`),
+/// which a CSV reader finds by name. Without `--events` the events name no columns, and the
+/// run is as before; another name is written beside `kind,tau`.
+#[test]
+fn an_input_or_unknown_named_as_an_events_column_is_a_usage_error() {
+    let text = std::fs::read_to_string(shipped("four_bar.kl")).expect("the shipped four-bar");
+    let dir = std::env::temp_dir();
+    let events = dir.join(format!("kinloop-events-columns-{}.csv", std::process::id()));
+    let events_arg = events.display().to_string();
+    let params = ["--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "1"];
+    let run = |command: &str, file: &str, with_events: bool| {
+        let mut args = vec![command, file];
+        args.extend(params);
+        if with_events {
+            args.extend(["--events", events_arg.as_str()]);
+        }
+        kinloop(&args)
+    };
+    for (from, to, what) in [("phi", "tau", "input"), ("gamma", "kind", "unknown")] {
+        let file = dir.join(format!("kinloop-events-columns-{to}-{}.kl", std::process::id()));
+        std::fs::write(&file, text.replace(from, to)).expect("written");
+        let file = file.display().to_string();
+        for command in ["sweep", "trace"] {
+            let out = run(command, &file, true);
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{command} {to}: {stderr}");
+            assert!(out.stdout.is_empty(), "{command} {to}: {}", String::from_utf8_lossy(&out.stdout));
+            assert!(stderr.contains(&format!("kinloop {command} --events writes a column `{to}`")), "{stderr}");
+            assert!(stderr.contains(&format!("rename the {what} `{to}` of FourBar")), "{stderr}");
+            assert!(!events.exists(), "{command} {to}: the events file was created");
+            let out = run(command, &file, false);
+            assert!(out.status.success(), "{command} {to}: {}", String::from_utf8_lossy(&out.stderr));
+        }
+        let _ = std::fs::remove_file(&file);
+    }
+    for command in ["sweep", "trace"] {
+        assert!(run(command, &shipped("four_bar.kl"), true).status.success(), "{command}");
+        let written = std::fs::read_to_string(&events).expect("the events file");
+        assert!(written.starts_with("kind,tau,phi [rad],beta [rad],gamma [rad]\n"), "{command}: {written}");
+        let _ = std::fs::remove_file(&events);
+    }
+}
