@@ -41,8 +41,10 @@ pub struct Unbalance {
 /// repeats the first; `n > 2 removed` samples per period); `eval` computes the jet anywhere in
 /// the period.
 ///
-/// Errors (`InvalidArgument`): samples not equally spaced, or whose last value does not repeat
-/// the first (to [`PERIODIC_TOLERANCE`] of their largest magnitude: not one period; a quantity
+/// Errors (`InvalidArgument`): samples not equally spaced to `1e-9` of the period, or too far
+/// from 0 for a double to resolve their spacing to that (beyond about `4.5e6` periods, the
+/// error naming their magnitude and its resolution: shift them by whole periods), or whose
+/// last value does not repeat the first (to [`PERIODIC_TOLERANCE`] of their largest magnitude: not one period; a quantity
 /// that is rounding alone, zero in exact arithmetic, may fail this: give its samples to
 /// [`Sampled::unbalance`](crate::analysis::Sampled::unbalance), which judges a column against
 /// the size of what it is computed from); too many harmonics `removed` for the samples (see
@@ -102,11 +104,7 @@ pub(crate) fn unbalance_across(
     let n = samples.len() - 1;
     let (x0, x_end) = (samples[0].x, samples[n].x);
     let period = x_end - x0;
-    let spacing_ok =
-        samples.iter().enumerate().all(|(j, s)| (s.x - (x0 + period * j as f64 / n as f64)).abs() <= 1e-9 * period);
-    if !spacing_ok {
-        return Err(Error::InvalidArgument("residual needs equally spaced samples over one period".into()));
-    }
+    check_spacing(samples, x0, period)?;
     // Over part of a period (or more) the harmonics are of another quantity, which repeats the
     // samples of the range: the residual of half a turn of a cosine was 1.125, as `Ok`.
     if (samples[n].value - samples[0].value).abs() > PERIODIC_TOLERANCE * scale {
@@ -133,6 +131,39 @@ pub(crate) fn unbalance_across(
         }
     }
     Ok(Unbalance { fourier: f, max_abs: at.value.abs(), at })
+}
+
+/// How far, relative to the period, a sample may lie from its place in an equal spacing.
+const SPACING_TOLERANCE: f64 = 1e-9;
+
+/// Refuses `samples` (`n + 1` of them, `x0` the first, over `period`) that are not equally
+/// spaced to [`SPACING_TOLERANCE`] of the period. Where rounding alone explains the gap
+/// (within two units in the last place of the samples' largest magnitude: half a unit where
+/// the caller rounded each sample, half where the place below is computed, and at most half
+/// from the last sample's rounding carried into the period), the samples are equally spaced
+/// as given, but too far from 0 for a double to resolve their spacing to that tolerance (about
+/// `4.5e6` periods): the error says so, with the numbers.
+fn check_spacing(samples: &[Jet], x0: f64, period: f64) -> Result<(), Error> {
+    let n = samples.len() - 1;
+    let gap = |j: usize| (samples[j].x - (x0 + period * j as f64 / n as f64)).abs();
+    let Some((j, worst)) = (0..=n).map(|j| (j, gap(j))).max_by(|a, b| a.1.total_cmp(&b.1)) else {
+        return Ok(());
+    };
+    if worst <= SPACING_TOLERANCE * period {
+        return Ok(());
+    }
+    let far = samples.iter().fold(0.0f64, |m, s| m.max(s.x.abs()));
+    let resolution = far.next_up() - far;
+    if worst <= 2.0 * resolution {
+        return Err(Error::InvalidArgument(format!(
+            "residual needs the samples' spacing resolved to {SPACING_TOLERANCE:e} of the period, but they are too \
+             far from 0 for that: at {far:e} a double is resolved to {resolution:e}, {:.2e} of the period {period:e} \
+             (sample {j} is {worst:e} off an equal spacing, by rounding alone); give the samples nearer 0, shifted by \
+             whole periods",
+            resolution / period
+        )));
+    }
+    Err(Error::InvalidArgument("residual needs equally spaced samples over one period".into()))
 }
 
 #[cfg(test)]
@@ -195,6 +226,30 @@ mod tests {
         // Unequal spacing is refused.
         let mut bad = s.clone();
         bad[3].x += 0.01;
-        assert!(unbalance(&bad, f, 1).is_err());
+        let r = unbalance(&bad, f, 1);
+        assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("equally spaced samples")), "{r:?}");
+    }
+
+    /// Samples equally spaced as given, `1e7` periods from 0: a double there is resolved to
+    /// `7.45e-9`, `1.19e-9` of the period `2π`, so rounding alone moves a sample by more than the
+    /// `1e-9` of a period the spacing is checked to. The refusal says so, with the numbers, where
+    /// it said the samples were not equally spaced. Each sample is `x0 + j T / 24` rounded
+    /// once; their largest gap from the places the check computes is one unit in the last
+    /// place, `7.45e-9` (sample 13 first, as computed apart with Python's floats, which round
+    /// as Rust's).
+    #[test]
+    fn samples_too_far_from_zero_for_their_spacing_say_so() {
+        let f = |x: f64| Ok(Jet { x, value: x.cos(), d1: -x.sin(), d2: -x.cos() });
+        let x0 = TAU * 1e7;
+        let far: Vec<Jet> = (0..=24).map(|j| f(x0 + TAU * j as f64 / 24.0).unwrap()).collect();
+        let r = unbalance(&far, f, 1);
+        let Err(Error::InvalidArgument(m)) = &r else { panic!("{r:?}") };
+        assert!(m.contains("too far from 0"), "{m}");
+        assert!(!m.contains("equally spaced samples"), "{m}");
+        // The resolution at the last sample, 2^-27 = 7.450580596923828e-9, and its part of 2π.
+        assert!(m.contains("resolved to 7.450580596923828e-9, 1.19e-9 of the period"), "{m}");
+        // The same samples a whole number of periods nearer 0 (`1e5`) are accepted.
+        let near: Vec<Jet> = (0..=24).map(|j| f(TAU * 1e5 + TAU * j as f64 / 24.0).unwrap()).collect();
+        assert!(unbalance(&near, f, 1).is_ok());
     }
 }
