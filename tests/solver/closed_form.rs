@@ -586,6 +586,35 @@ fn a_coupler_shorter_than_the_tolerance_of_its_loop_is_not_determined() {
     }
 }
 
+/// The four-bar of the test above solved by Newton (its twin): the coupler's angle is not
+/// determined (every angle closes the loop within `b`, `1e-20` of the size or less, where the
+/// tolerance is `1e-12`), and the closed form's verdict is the singular position of block 0. The
+/// Newton twin converged on the rocker's angle, then its final correction, through a pivot ratio
+/// of about `b / size`, carried the coupler's angle to `4.7e283` rad (`b = 1e-300`) or `-1.2e8`
+/// rad (`b = 1e-20` at `π/3 + 1e-12`), beyond the largest angle resolved to the tolerance
+/// (`4.5e6` rad), and returned it as the solution. It is now the same singular position, in
+/// every unit.
+#[test]
+fn a_newton_coupler_shorter_than_the_tolerance_is_not_carried_past_every_turn() {
+    let guess = [0.5, 1.5];
+    let cases = [(1e-300, PI / 3.0), (1e-300, PI / 3.0 + 1e-12), (1e-20, PI / 3.0 + 1e-12)];
+    for scale in [1.0, 1e-3, 1e3] {
+        for (coupler, phi) in cases {
+            let at = format!("scale {scale}, coupler {coupler:e}, phi {phi}");
+            let m = FourBarNewton { a: scale, b: coupler * scale, c: scale, d: scale, pc: 1.4 * scale, pa: 0.5 };
+            let closed = FourBar { a: scale, b: coupler * scale, c: scale, d: scale, pc: 1.4 * scale, pa: 0.5 };
+            let cfg = NewtonConfig::default();
+            assert!(matches!(closed.position_flat(&[phi], &guess, &cfg), Err(Error::Singular { .. })), "{at}");
+            match m.position_flat(&[phi], &guess, &cfg) {
+                Err(e @ Error::Singular { .. }) => {
+                    assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
+                }
+                other => panic!("{at}: {other:?}"),
+            }
+        }
+    }
+}
+
 /// Towards a limit position of its input, where its Jacobian becomes singular, the Newton twin
 /// (whose later evaluations rotate their sines and cosines: `NearTrig`) succeeds wherever the
 /// closed form does, down to pivot ratios below 1e-7 (no decision of the iteration flips to a

@@ -226,6 +226,14 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if self.iterations > 1 && beyond_half_turn(&self.z, self.guess) {
             self.back_to_guess_turns(rho, cfg, eval, mags, last);
         }
+        // An angle carried beyond the precise bound from a guess inside it is not resolved
+        // there: a root of a block whose angle every value closes (a link shorter than the
+        // tolerance of its loop, a final correction of 1e283 rad through a pivot of 0), or a
+        // root on a turn where doubles are coarser than the tolerance. One comparison per
+        // unknown, or-ed, on values at hand.
+        if past_precise_angle(&self.z, self.guess, &m.turns, cfg.largest_precise_angle()) {
+            return Err(self.past_precise(rho, pivot, s, &m.turns, cfg));
+        }
         last.keep(self.ev);
         Ok(Solved { z: self.z, iterations: self.iterations, evaluations: self.evaluations, residual: rho, termination })
     }
@@ -302,6 +310,24 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         }
     }
 
+    /// The failure of a converged iteration that carried an angle past the precise bound (see
+    /// [`past_precise_angle`]): where the Jacobian there is singular by the tolerance, the
+    /// angle is not determined (every value closes the block), a singular position as the
+    /// closed form reports it; otherwise a root on a turn too far out to be resolved, the
+    /// angle's [`BlockFailure::TooManyTurns`].
+    #[cold]
+    #[inline(never)]
+    fn past_precise(&self, rho: f64, pivot: f64, s: &[f64; N], turns: &[bool; N], cfg: &NewtonConfig) -> BlockFailure {
+        // NaN is no regular pivot.
+        if pivot.is_nan() || pivot <= cfg.singular_tol {
+            return self.singular(rho, pivot, s, cfg);
+        }
+        // The angle farthest out (a length's value says nothing of turns).
+        let angles = (0..N).filter(|&c| turns[c]).map(|c| self.z[c]);
+        let value = angles.max_by(|a, b| a.abs().total_cmp(&b.abs())).unwrap_or(0.0);
+        BlockFailure::TooManyTurns { value }
+    }
+
     /// Applies the final correction `dz` after evaluating there, unless it made the residual
     /// worse than `rho` (rounding noise near a singular position).
     #[cold]
@@ -316,6 +342,19 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     ) {
         evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval, mags, &mut self.evaluations);
     }
+}
+
+/// Whether an angle (an unknown whose equations repeat every turn, `turns`) ended beyond
+/// `bound` (the configuration's `largest_precise_angle`) from a guess within it: no angle is
+/// resolved to the tolerance there (a guess beyond it is the caller's, diagnosed as too many
+/// turns where it fails). NaN counts as within (a non-finite result is reported otherwise).
+#[inline(always)]
+fn past_precise_angle<const N: usize>(z: &[f64; N], guess: &[f64; N], turns: &[bool; N], bound: f64) -> bool {
+    let mut past = false;
+    for c in 0..N {
+        past |= turns[c] & (z[c].abs() > bound) & (guess[c].abs() <= bound);
+    }
+    past
 }
 
 #[cfg(test)]
