@@ -206,6 +206,46 @@ fn dyad_gap([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> f64 {
     if gap < 0.0 { 0.0 } else { gap }
 }
 
+/// [`touching`] for a dyad's circle intersection whose circles miss (`d2 < 0`), judged in the
+/// dyad's lengths, `links` `[e0, e1, l0², l1²]`, as Newton judges its loop: where every angle of
+/// its first link closes it within the tolerance ([`turns_freely`]), singular as
+/// [`undetermined`]; where its links laid in line close it within the residual tolerance of its
+/// size (its [`dyad_gap`] within it, at least `16 eps`), the limit position, offset `0`;
+/// otherwise one that cannot be assembled, with that gap as residual. [`touching`]'s own test is
+/// relative to the equation's `|c|`, about `l0 |e|`, a product of two of the three lengths, so
+/// the miss it allowed scaled with the product of the two it does not hold over the third
+/// (about `tol l0 |e| / l1` where `|e|` is longest, `tol l0 l1 / |e|` where `l1` is): the
+/// tolerance of the short link where it is the first, a miss of `1e-6` of the loop where the
+/// second link is `1e-6` of the others (returned as a position with the loop open by it). A
+/// dyad whose lengths cannot be read here (a square out of the normal range, a length not
+/// finite) takes [`touching`]'s verdict in its coefficients, a failure's residual the gap as
+/// [`dyad_failure`] gives it.
+#[cold]
+#[inline(never)]
+fn dyad_touching(d2: f64, r2: f64, c: f64, links: [f64; 4], cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
+    // Written so that a NaN takes the coefficients' verdict.
+    if !(d2 < 0.0 && r2 >= f64::MIN_POSITIVE && readable(links)) {
+        return touching(d2, r2, c, cfg).map_err(|f| dyad_failure(f, links, cfg));
+    }
+    if turns_freely(links, cfg) {
+        return Err(undetermined(cfg));
+    }
+    let gap = dyad_gap(links);
+    if gap <= cfg.residual_tol.max(16.0 * f64::EPSILON) {
+        Ok(0.0)
+    } else {
+        Err(BlockFailure::NoAssembly { row: 0, iterations: 0, evaluations: 0, residual: gap })
+    }
+}
+
+/// Whether a dyad's `links` `[e0, e1, l0², l1²]` give its lengths to full precision: the
+/// offset's components finite, the links' squares normal numbers (not zero, subnormal or
+/// overflowed).
+fn readable([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> bool {
+    let normal = |v: f64| (f64::MIN_POSITIVE..=f64::MAX).contains(&v);
+    e0.is_finite() && e1.is_finite() && normal(l0_sq) && normal(l1_sq)
+}
+
 /// The failure of a block whose equations hold for every value of an angle: singular, with a
 /// zero pivot ratio (its Jacobian's columns are parallel there).
 #[cold]
@@ -283,8 +323,8 @@ pub fn folded_dyad_root_offset(
     Ok(root_offset_deferred(d2, flip))
 }
 
-/// [`folded_dyad_root_offset`] where its test fails: [`folded_off_range`], a failure's residual
-/// the dyad's gap.
+/// [`folded_dyad_root_offset`] where its test fails: as [`folded_off_range`], the verdict on
+/// circles that miss the dyad's ([`dyad_touching`]), a failure's residual the dyad's gap.
 #[cold]
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
@@ -298,7 +338,11 @@ fn folded_dyad_off_range(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<f64, BlockFailure> {
-    folded_off_range(d2, r2, a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links, cfg))
+    if (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
+        return dyad_touching(d2, r2, c, links, cfg);
+    }
+    let (k, _, _, d) = rescaled(a, b, c, Some(links), flip, cfg).map_err(|f| dyad_failure(f, links, cfg))?;
+    Ok(d / k)
 }
 
 /// [`folded_root_offset`] where its test fails: [`touching`] for a normal `r2`; otherwise the
@@ -318,7 +362,7 @@ fn folded_off_range(
     if (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
         return touching(d2, r2, c, cfg);
     }
-    let (k, _, _, d) = rescaled(a, b, c, flip, cfg)?;
+    let (k, _, _, d) = rescaled(a, b, c, None, flip, cfg)?;
     Ok(d / k)
 }
 
@@ -418,8 +462,8 @@ pub fn dyad_of(dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result
 }
 
 /// [`dyad_of`]'s root offset where `d2` is negative or cancelled: recomputed from the triangle
-/// ([`dyad_d2`]), then [`root_offset`]'s, a failure's residual the dyad's gap
-/// ([`dyad_failure`]).
+/// ([`dyad_d2`]), then [`root_offset`]'s, circles that miss judged in the dyad's lengths
+/// ([`dyad_touching`]).
 #[cold]
 #[inline(never)]
 fn dyad_offset_cancelled(
@@ -430,11 +474,18 @@ fn dyad_offset_cancelled(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<f64, BlockFailure> {
-    root_offset(dyad_d2(d2, r2, links), r2, c, flip, cfg).map_err(|f| dyad_failure(f, links, cfg))
+    let d2 = dyad_d2(d2, r2, links);
+    // `root_offset`'s test, its failure the dyad's.
+    if d2 >= 0.0 && r2 >= f64::MIN_POSITIVE {
+        Ok(root_offset_deferred(d2, flip))
+    } else {
+        dyad_touching(d2, r2, c, links, cfg)
+    }
 }
 
-/// [`dyad_of`] where `a² + b²` is not a normal number: [`dyad_roots_rescaled`], a failure's
-/// residual the dyad's gap ([`dyad_failure`]).
+/// [`dyad_of`] where `a² + b²` is not a normal number: [`dyad_roots_rescaled`], circles that
+/// miss judged in the dyad's lengths ([`dyad_touching`]), a failure's residual the dyad's gap
+/// ([`dyad_failure`]).
 #[cold]
 #[inline(never)]
 fn dyad_of_rescaled(
@@ -445,7 +496,8 @@ fn dyad_of_rescaled(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<(f64, f64), BlockFailure> {
-    dyad_roots_rescaled(a, b, c, flip, cfg).map_err(|f| dyad_failure(f, links, cfg))
+    let (_, [a, b, c], r2, d) = rescaled(a, b, c, Some(links), flip, cfg).map_err(|f| dyad_failure(f, links, cfg))?;
+    Ok(roots_of_offset(a, b, c, r2, d))
 }
 
 /// `d2 = r2 - c²` of a dyad's circle intersection, recomputed from the triangle of its lengths
@@ -490,7 +542,7 @@ fn dyad_d2_stable([e0, e1, l0, l1]: [f64; 4]) -> f64 {
 #[cold]
 #[inline(never)]
 fn dyad_roots_rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, f64), BlockFailure> {
-    let (_, [a, b, c], r2, d) = rescaled(a, b, c, flip, cfg)?;
+    let (_, [a, b, c], r2, d) = rescaled(a, b, c, None, flip, cfg)?;
     Ok(roots_of_offset(a, b, c, r2, d))
 }
 
@@ -499,13 +551,25 @@ fn dyad_roots_rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -
 /// k, r2, d)`. Coefficients that are not finite, all zero, or below
 /// [`SMALLEST_PRECISE_COEFFICIENT`] are not divided (`k = 1`), and fail as the unscaled
 /// formulas do; a failure's residual is relative ([`unreached`]), the same for the equation
-/// divided.
-fn rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -> Result<(f64, [f64; 3], f64, f64), BlockFailure> {
+/// divided. A dyad's circles that miss (`links` its lengths, as [`dyad_of`] takes
+/// them) are judged in its lengths ([`dyad_touching`]), which the division leaves as they are.
+fn rescaled(
+    a: f64,
+    b: f64,
+    c: f64,
+    links: Option<[f64; 4]>,
+    flip: bool,
+    cfg: &NewtonConfig,
+) -> Result<(f64, [f64; 3], f64, f64), BlockFailure> {
     let big = a.abs().max(b.abs()).max(c.abs());
     let k = if big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT { reciprocal_power_of_two(big) } else { 1.0 };
     let (a, b, c) = (a * k, b * k, c * k);
     let r2 = a * a + b * b;
-    let d = root_offset(r2 - c * c, r2, c, flip, cfg)?;
+    let d2 = r2 - c * c;
+    let d = match links {
+        Some(links) if !(d2 >= 0.0 && r2 >= f64::MIN_POSITIVE) => dyad_touching(d2, r2, c, links, cfg)?,
+        _ => root_offset(d2, r2, c, flip, cfg)?,
+    };
     Ok((k, [a, b, c], r2, d))
 }
 
@@ -903,6 +967,80 @@ mod tests {
         for (c, a) in [(1.0, 1.0 - 1e-13), (c_over, a_under)] {
             let (cq, sq) = dyad_roots(a, 0.0, c, false, &cfg).unwrap();
             assert!((cq - 1.0).abs() <= 1e-12 && sq == 0.0, "{c:e}: {cq} {sq}");
+        }
+    }
+
+    /// Dyads whose links, laid in line, miss closing the triangle with their centres' offset by
+    /// `delta`, on centres along `x` (so that `b = 0`, as a folded dyad's too): `(name, |e|,
+    /// l0, l1, delta)`, every length a sum of powers of two (exact at size 1 and `2^-30`). The
+    /// loop's least residual is `delta` (the in-line position), the dyad's size `l0 + l1 + |e|`;
+    /// its gap over its size is the closed form `delta / size`.
+    const IN_LINE: [(&str, f64, f64, f64, f64); 5] = {
+        const S: f64 = 1.0 / (1u64 << 20) as f64; // the short link, 9.5e-7 of the others
+        const NEAR: f64 = 1.0 / (1u64 << 42) as f64; // 2.3e-13: within the tolerance of 1e-12
+        const FAR: f64 = 1.0 / (1u64 << 30) as f64; // 9.3e-10: beyond it
+        [
+            ("short first link, centres farthest", 1.0 + S + NEAR, S, 1.0, NEAR),
+            ("short first link, second longest", 1.0, S, 1.0 + S + NEAR, NEAR),
+            ("short second link, centres farthest", 1.0 + S + FAR, 1.0, S, FAR),
+            ("short second link, first longest", 1.0, 1.0 + S + FAR, S, FAR),
+            ("equal links, centres farthest", 2.0 + NEAR, 1.0, 1.0, NEAR),
+        ]
+    };
+
+    /// Whether the dyad `(|e|, l0, l1, delta)` of [`IN_LINE`] is a limit position: its loop closes
+    /// within the default tolerance (`1e-12`) of its size in line.
+    fn closes_in_line(e: f64, l0: f64, l1: f64, delta: f64) -> bool {
+        delta <= NewtonConfig::default().residual_tol * (e + l0 + l1)
+    }
+
+    /// A dyad whose links laid in line close its loop within the residual tolerance of its size
+    /// is its limit position, and one whose links miss by more cannot be assembled, with the
+    /// miss over its size as residual, whichever link is short, at every size and whichever
+    /// path solves it (`dyad_of`, with its coefficients' squares in range or rescaled, and a
+    /// folded coefficient's `folded_dyad_root_offset`). The verdict was taken in the equation's
+    /// coefficients, whose `|c|` is about `l0 |e|`: with a short first link a miss of `2.3e-13`
+    /// of a loop of 2 (its allowance `tol l0`, `1e-18`) was "cannot be assembled"; with a short
+    /// second link one of `9.3e-10` (allowance `tol l0² / l1`, `1e-6`) was a limit position
+    /// returned with the loop open by it and the second link's cosine `1 + 2^-10`. The limit
+    /// position returned has the links in line: its first link's end, at the angle of the
+    /// returned cosine and sine, is the second link's length from its centre, to the tolerance
+    /// (an independent construction of the loop).
+    #[test]
+    fn a_dyad_is_a_limit_position_where_its_links_in_line_close_it_within_the_tolerance() {
+        let cfg = NewtonConfig::default();
+        let tol = cfg.residual_tol;
+        for (what, e, l0, l1, delta) in IN_LINE {
+            let closes = closes_in_line(e, l0, l1, delta);
+            let want_gap = delta / (e + l0 + l1);
+            for k in [1.0, 1e-3, 1e-6, 2f64.powi(-30), 1e3, 1e100, 1e-100] {
+                let Dyad { a, b, c, links, r2, d2 } = Dyad::of([e * k, 0.0], l0 * k, l1 * k);
+                let of = dyad_of([a, b, links[0], links[1], links[2], links[3]], c, false, &cfg);
+                // The emitted code's roots for `b = 0`: `(c / a, d / a)`.
+                let folded = folded_dyad_root_offset(d2, r2, a, b, c, links, false, &cfg).map(|d| (c / a, d / a));
+                for (path, got) in [("dyad_of", of), ("folded", folded)] {
+                    let at = format!("{what}, size {k:e}, {path}");
+                    match got {
+                        Ok((cq, sq)) => {
+                            assert!(closes, "{at}: a position ({cq}, {sq}) where the loop misses by {want_gap:e}");
+                            let q = sq.atan2(cq);
+                            let end = (e * k + l0 * k * q.cos()).hypot(l0 * k * q.sin());
+                            let miss = (end - l1 * k).abs() / (k * (e + l0 + l1));
+                            // The in-line miss plus the rounding of a few lengths (`8 eps`).
+                            assert!(miss <= tol + 8.0 * f64::EPSILON, "{at}: loop open by {miss:e} of its size");
+                        }
+                        Err(BlockFailure::NoAssembly { residual, .. }) => {
+                            assert!(!closes, "{at}: no assembly, yet the links in line close it to {want_gap:e}");
+                            // The gap of lengths rounded at size `k` (a few `eps` of the size).
+                            assert!(
+                                (residual - want_gap).abs() <= 8.0 * f64::EPSILON,
+                                "{at}: {residual:e} against {want_gap:e}"
+                            );
+                        }
+                        other => panic!("{at}: {other:?}"),
+                    }
+                }
+            }
         }
     }
 
