@@ -378,13 +378,18 @@ fn folded_off_range(
 /// coefficients are products of two lengths, so a mechanism near `1e77` in size), both sides of
 /// `-d2 <= 2 tol c²` are infinite and the test held for any `c`: links falling short by most of
 /// their size were taken for a limit position and given a cosine far beyond 1. There the same
-/// test is made relative to `c²` (see [`short_within`]), which does not overflow.
+/// test is made relative to `c²` (see [`short_within`]), which does not overflow. An infinite
+/// `c` is no limit position but an overflow ([`non_finite_coefficient`]): taken for one, it gave
+/// the cosine `c a / r2`, infinite, with no error.
 #[cold]
 #[inline(never)]
 fn touching(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
+    if c.is_infinite() {
+        return Err(non_finite_coefficient(0.0, 0.0, c));
+    }
     let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
     let c2 = c * c;
-    let within = if c2 == f64::INFINITY && c.is_finite() { short_within(r2, c, tol) } else { -d2 <= 2.0 * tol * c2 };
+    let within = if c2 == f64::INFINITY { short_within(r2, c, tol) } else { -d2 <= 2.0 * tol * c2 };
     // Written so that a NaN fails.
     if r2 >= f64::MIN_POSITIVE && within { Ok(0.0) } else { Err(no_root(d2, r2, c, cfg)) }
 }
@@ -551,7 +556,9 @@ fn dyad_roots_rescaled(a: f64, b: f64, c: f64, flip: bool, cfg: &NewtonConfig) -
 /// k, r2, d)`. Coefficients that are not finite, all zero, or below
 /// [`SMALLEST_PRECISE_COEFFICIENT`] are not divided (`k = 1`), and fail as the unscaled
 /// formulas do; a failure's residual is relative ([`unreached`]), the same for the equation
-/// divided. A dyad's circles that miss (`links` its lengths, as [`dyad_of`] takes
+/// divided. A coefficient that is not finite has no root to divide
+/// ([`non_finite_coefficient`]: an infinite `a` gave `d = inf` and the cosine `inf / inf`,
+/// NaN, with no error). A dyad's circles that miss (`links` its lengths, as [`dyad_of`] takes
 /// them) are judged in its lengths ([`dyad_touching`]), which the division leaves as they are.
 fn rescaled(
     a: f64,
@@ -561,8 +568,11 @@ fn rescaled(
     flip: bool,
     cfg: &NewtonConfig,
 ) -> Result<(f64, [f64; 3], f64, f64), BlockFailure> {
+    if !(a.is_finite() && b.is_finite() && c.is_finite()) {
+        return Err(non_finite_coefficient(a, b, c));
+    }
     let big = a.abs().max(b.abs()).max(c.abs());
-    let k = if big.is_finite() && big >= SMALLEST_PRECISE_COEFFICIENT { reciprocal_power_of_two(big) } else { 1.0 };
+    let k = if big >= SMALLEST_PRECISE_COEFFICIENT { reciprocal_power_of_two(big) } else { 1.0 };
     let (a, b, c) = (a * k, b * k, c * k);
     let r2 = a * a + b * b;
     let d2 = r2 - c * c;
@@ -571,6 +581,20 @@ fn rescaled(
         _ => root_offset(d2, r2, c, flip, cfg)?,
     };
     Ok((k, [a, b, c], r2, d))
+}
+
+/// The failure of `a cos q + b sin q = c` with a coefficient that is not finite: a NaN one's
+/// value not finite; an infinite one's an overflow (its terms too large for `f64`: a length
+/// whose square, or a product of two, overflowed, at a size the rescue answers by Newton; an
+/// infinite length given is reported as such before the block's failure).
+#[cold]
+#[inline(never)]
+fn non_finite_coefficient(a: f64, b: f64, c: f64) -> BlockFailure {
+    if a.is_nan() || b.is_nan() || c.is_nan() {
+        BlockFailure::NonFinite { row: 0, iterations: 0 }
+    } else {
+        BlockFailure::Overflow { row: 0 }
+    }
 }
 
 /// `2^-1000`: a coefficient at least this large is a normal number with 22 binary orders of
@@ -1042,6 +1066,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A coefficient that is not finite (an infinite one: a length whose square overflowed, or
+    /// an infinite length) gives no root: every closed-form step fails with a typed error, an
+    /// overflow (which the rescue answers at the mechanism's own size) or a value not finite,
+    /// and none returns a position with a value that is not finite. `dyad_roots(1, 0, inf)`
+    /// returned `Ok((inf, NaN))` (an infinite `c` taken for a limit position), `dyad_roots(inf,
+    /// 0, 1)` `Ok((NaN, NaN))`, and `folded_root_offset` the offset `0` of a cosine `c / a =
+    /// inf`.
+    #[test]
+    fn a_coefficient_that_is_not_finite_is_a_typed_failure() {
+        let cfg = NewtonConfig::default();
+        let (inf, nan) = (f64::INFINITY, f64::NAN);
+        let typed = |what: &str, got: Result<(f64, f64), BlockFailure>| match got {
+            Err(BlockFailure::Overflow { .. } | BlockFailure::NonFinite { .. }) => {}
+            other => panic!("{what}: {other:?}"),
+        };
+        for (a, b, c) in
+            [(1.0, 0.0, inf), (1.0, 0.5, -inf), (inf, 0.0, 1.0), (0.0, -inf, 1.0), (inf, 1.0, inf), (1.0, nan, 0.5)]
+        {
+            let what = format!("({a}, {b}, {c})");
+            typed(&what, dyad_roots(a, b, c, false, &cfg));
+            let r2 = a * a + b * b;
+            typed(&what, folded_root_offset(r2 - c * c, r2, a, b, c, false, &cfg).map(|d| (d, d)));
+            // `root_offset` is given a normal `r2` by its callers, which rescale any other.
+            if (f64::MIN_POSITIVE..=f64::MAX).contains(&r2) {
+                typed(&what, root_offset(r2 - c * c, r2, c, false, &cfg).map(|d| roots_of_offset(a, b, c, r2, d)));
+            }
+        }
+        // A dyad whose second link's square overflowed: `c = inf`, its `a² + b²` of order one.
+        let links = [1.0, 0.0, 1.0, inf];
+        let c = 0.5 * ((links[3] - links[2]) - 1.0);
+        typed("dyad_of", dyad_of([1.0, 0.0, links[0], links[1], links[2], links[3]], c, false, &cfg));
+        typed(
+            "folded dyad",
+            folded_dyad_root_offset(1.0 - c * c, 1.0, 1.0, 0.0, c, links, false, &cfg).map(|d| (d, d)),
+        );
     }
 
     /// An equation every angle satisfies (`0 cos q + 0 sin q = 0`: coincident circles of equal
