@@ -115,19 +115,19 @@ fn loop_residual(bx: f64, g: &Design, beta: f64, gamma: f64) -> f64 {
 }
 
 /// Checks one solve against its design: where the links in line close the loop within the
-/// tolerance, a position closing it as well (the tolerance of `1e-12` of the loop, plus the
-/// rounding of its four terms, `8 eps`) near the links in line (`beta = 0`, `gamma = pi`): at
+/// tolerance `tol` (`1e-12` by default, `16 eps` at the rounding floor), a position closing it
+/// as well (`tol` of the loop, plus the rounding of its four terms, `8 eps`) near the links in line (`beta = 0`, `gamma = pi`): at
 /// the fold, turning the short link (`l`) by `t` opens the loop by about `l t² / 2`, so every
 /// angle within `sqrt(2 tol size / l)` closes it as well (`1.3e-3` rad here; where rounding
 /// lengthens the links into a triangle, in millimetres, the root is `6.9e-6` rad off line);
 /// where they miss by more, no assembly with the residual `delta / (b + c + |BD|)` (to `1e-4`
 /// of itself: the lengths' rounding, `1e-16` of the size, over a gap of `5e-10`).
-fn check(what: &str, closes: bool, g: &Design, bx: f64, got: Result<[f64; 2], Error>) {
+fn check(what: &str, closes: bool, g: &Design, bx: f64, got: Result<[f64; 2], Error>, tol: f64) {
     let size = g.b + g.c + (g.d - bx);
     match got {
         Ok([beta, gamma]) => {
             assert!(closes, "{what}: solved ({beta}, {gamma}), yet the links in line miss by {:e}", g.delta / size);
-            let tol = 1e-12 + 8.0 * f64::EPSILON;
+            let tol = tol + 8.0 * f64::EPSILON;
             let r = loop_residual(bx, g, beta, gamma);
             assert!(r <= tol, "{what}: loop open by {r:e} of its size");
             let free = (2.0 * tol * size / g.b.min(g.c)).sqrt();
@@ -148,17 +148,45 @@ fn check(what: &str, closes: bool, g: &Design, bx: f64, got: Result<[f64; 2], Er
 /// verdict of the construction in each, whichever of the two links is short.
 #[test]
 fn a_dyad_within_the_tolerance_of_its_limit_is_the_limit_position_in_every_unit() {
-    let cfg = NewtonConfig::default();
     for (name, closes, units) in designs() {
-        for (unit, g) in ["m", "mm", "µm"].iter().zip(units) {
-            let four_bar = InLineFourBar { a: g.a, b: g.b, c: g.c, d: g.d };
-            let got = four_bar.position_flat(&[PI], &[0.1, 3.0], &cfg).map(|(q, _)| q);
-            check(&format!("four-bar, {name}, in {unit}"), closes, &g, -g.a, got);
-            // The slider's dyad: `B = (0, 0)`, `D = (a + d, 0)`, the same lengths.
-            let slider = InLineSliderDyad { b: g.b, c: g.c, d: g.a + g.d };
-            let on_slider = Design { d: g.a + g.d, ..g };
-            let got = slider.position_flat(&[0.0], &[0.1, 3.0], &cfg).map(|(q, _)| q);
-            check(&format!("slider's dyad, {name}, in {unit}"), closes, &on_slider, 0.0, got);
-        }
+        solve_in_every_unit(name, closes, &units, &NewtonConfig::default());
+    }
+}
+
+/// At the rounding floor (a residual tolerance of 0, which allows `16 eps` of the size), a
+/// dyad closing exactly in decimal is still its limit position in every unit, the short link
+/// the coupler or the rocker: the rounding of its lengths, a few `eps` of its size, is no miss.
+#[test]
+fn a_dyad_closing_exactly_in_decimal_is_the_limit_position_at_the_rounding_floor() {
+    let floor = NewtonConfig::default().with_residual_tol(0.0);
+    let d = |a, b, c, d| Design { a, b, c, d, delta: 0.0 };
+    let exact = [
+        (
+            "short coupler",
+            [d(0.1, 0.000001, 0.399999, 0.3), d(100.0, 0.001, 399.999, 300.0), d(1e5, 1.0, 399999.0, 3e5)],
+        ),
+        (
+            "short rocker",
+            [d(0.1, 0.399999, 0.000001, 0.3), d(100.0, 399.999, 0.001, 300.0), d(1e5, 399999.0, 1.0, 3e5)],
+        ),
+    ];
+    for (name, units) in exact {
+        solve_in_every_unit(name, true, &units, &floor);
+    }
+}
+
+/// [`check`]s the four-bar at `phi = pi` and the slider's dyad at `s = 0` of a design in each
+/// unit, under `cfg`.
+fn solve_in_every_unit(name: &str, closes: bool, units: &[Design; 3], cfg: &NewtonConfig) {
+    let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
+    for (unit, g) in ["m", "mm", "µm"].iter().zip(units) {
+        let four_bar = InLineFourBar { a: g.a, b: g.b, c: g.c, d: g.d };
+        let got = four_bar.position_flat(&[PI], &[0.1, 3.0], cfg).map(|(q, _)| q);
+        check(&format!("four-bar, {name}, in {unit}"), closes, g, -g.a, got, tol);
+        // The slider's dyad: `B = (0, 0)`, `D = (a + d, 0)`, the same lengths.
+        let slider = InLineSliderDyad { b: g.b, c: g.c, d: g.a + g.d };
+        let on_slider = Design { d: g.a + g.d, ..*g };
+        let got = slider.position_flat(&[0.0], &[0.1, 3.0], cfg).map(|(q, _)| q);
+        check(&format!("slider's dyad, {name}, in {unit}"), closes, &on_slider, 0.0, got, tol);
     }
 }
