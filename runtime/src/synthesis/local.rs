@@ -388,21 +388,76 @@ mod stop_serde {
     use crate::analysis::optimize::OptimizerStop;
     use serde::{Deserialize, Deserializer, Serializer};
 
-    pub fn serialize<S: Serializer>(stop: &OptimizerStop, s: S) -> Result<S::Ok, S::Error> {
-        s.serialize_str(match stop {
+    /// Every variant, in the order of [`ACCEPTED`].
+    const STOPS: [OptimizerStop; 4] = [
+        OptimizerStop::Converged,
+        OptimizerStop::MaxEvaluations,
+        OptimizerStop::Stalled,
+        OptimizerStop::InfeasibleStart,
+    ];
+
+    /// The names read: any other is an error listing these, not a variant guessed (a typo, or a
+    /// variant of a newer version, was read as `Stalled` without a word).
+    const ACCEPTED: [&str; 4] = ["Converged", "MaxEvaluations", "Stalled", "InfeasibleStart"];
+
+    /// The name of `stop`. The match is exhaustive (in this crate `#[non_exhaustive]` does not
+    /// ask for a wildcard), so a new variant does not compile until it is named here; add it to
+    /// [`STOPS`] and [`ACCEPTED`] too (a test checks that the three agree).
+    fn name(stop: OptimizerStop) -> &'static str {
+        match stop {
             OptimizerStop::Converged => "Converged",
             OptimizerStop::MaxEvaluations => "MaxEvaluations",
+            OptimizerStop::Stalled => "Stalled",
             OptimizerStop::InfeasibleStart => "InfeasibleStart",
-            _ => "Stalled",
-        })
+        }
+    }
+
+    pub fn serialize<S: Serializer>(stop: &OptimizerStop, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(name(*stop))
     }
 
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<OptimizerStop, D::Error> {
-        Ok(match String::deserialize(d)?.as_str() {
-            "Converged" => OptimizerStop::Converged,
-            "MaxEvaluations" => OptimizerStop::MaxEvaluations,
-            "InfeasibleStart" => OptimizerStop::InfeasibleStart,
-            _ => OptimizerStop::Stalled,
-        })
+        let read = String::deserialize(d)?;
+        STOPS
+            .into_iter()
+            .find(|&stop| name(stop) == read)
+            .ok_or_else(|| serde::de::Error::unknown_variant(&read, &ACCEPTED))
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::{ACCEPTED, STOPS, name};
+        use crate::analysis::optimize::OptimizerStop;
+        use crate::synthesis::LocalReport;
+
+        fn report(stop: OptimizerStop) -> LocalReport {
+            LocalReport { evaluations: 3, iterations: 2, stop, residual: 0.5 }
+        }
+
+        /// Every variant reads back as itself, by the name it is written with (the names are
+        /// the variants' own, as `Debug` spells them).
+        #[test]
+        fn every_stop_reads_back_as_itself() {
+            for (stop, written) in STOPS.into_iter().zip(ACCEPTED) {
+                assert_eq!(name(stop), written);
+                assert_eq!(format!("{stop:?}"), written);
+                let json = serde_json::to_string(&report(stop)).unwrap();
+                assert!(json.contains(&format!("\"stop\":\"{written}\"")), "{json}");
+                assert_eq!(serde_json::from_str::<LocalReport>(&json).unwrap(), report(stop));
+            }
+        }
+
+        /// A name that is no variant (a typo, another case, a variant of a newer version) is an
+        /// error naming it and the accepted names: it was read as `Stalled` without a word.
+        #[test]
+        fn an_unknown_stop_is_an_error_naming_it_and_the_accepted_names() {
+            let json = serde_json::to_string(&report(OptimizerStop::Converged)).unwrap();
+            for typo in ["Stallled", "converged", "Diverged", ""] {
+                let text = json.replace("\"Converged\"", &format!("\"{typo}\""));
+                let err = serde_json::from_str::<LocalReport>(&text).unwrap_err().to_string();
+                assert!(err.contains(&format!("unknown variant `{typo}`")), "{err}");
+                assert!(err.contains("`Converged`, `MaxEvaluations`, `Stalled`, `InfeasibleStart`"), "{err}");
+            }
+        }
     }
 }
