@@ -59,12 +59,17 @@ impl ColumnKey for &String {
 /// assert_eq!(Table::read_csv(&csv[..]).unwrap(), s);
 /// ```
 ///
-/// With the feature `serde` a table reads back only with every row as long as `columns` and no
-/// more units than columns (an error says which row or how many units), as [`Table::push`]
-/// keeps it. JSON holds no NaN nor infinity: a table writes them there as the strings `"NaN"`,
-/// `"inf"` and `"-inf"`, which read back as they were (as does `null`, read as NaN); a format
-/// that holds them keeps them.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// With the feature `serde` a table reads back only with every row as long as `columns`, no
+/// more units than columns and no column name twice (an error says which row, how many units
+/// or which name), as [`Table::push`] keeps it and [`Table::read_csv`] reads it. JSON holds
+/// no NaN nor infinity: a table writes them there as the strings `"NaN"`, `"inf"` and
+/// `"-inf"`, which read back as they were (as does `null`, read as NaN); a format that holds
+/// them keeps them.
+///
+/// Two tables are equal (`==`) when their columns, rows and units are, a missing unit equal to
+/// `""` (none), as [`Table::unit`] reads it: a table of fewer units than columns equals what
+/// its CSV reads back as. The rows compare as numbers (`-0.0 == 0.0`, and NaN equals nothing).
+#[derive(Clone, Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(try_from = "TableRepr"))]
 pub struct Table {
     /// Column names.
@@ -74,7 +79,8 @@ pub struct Table {
     pub rows: Vec<Vec<f64>>,
     /// Unit of each column (`""` for none; a missing entry is none, and there are at most as
     /// many as columns: [`Table::write_csv`] refuses more), written into the CSV header as
-    /// `name [unit]`.
+    /// `name [unit]`. A table read ([`Table::read_csv`], or serde) has one per column, `""`
+    /// where none was written.
     pub units: Vec<String>,
 }
 
@@ -102,7 +108,29 @@ impl TryFrom<TableRepr> for Table {
         if t.units.len() > width {
             return Err(format!("the table has {} units for {width} columns", t.units.len()));
         }
-        Ok(Table { columns: t.columns, rows: t.rows, units: t.units })
+        // As `read_csv` refuses it: `Table::column` would find the first alone.
+        if let Some((name, j, k)) = repeated(&t.columns) {
+            return Err(format!("the column name `{name}` appears twice (columns {j} and {k})"));
+        }
+        // One unit per column, as a table read from CSV has: a missing one is none.
+        let mut units = t.units;
+        units.resize(width, String::new());
+        Ok(Table { columns: t.columns, rows: t.rows, units })
+    }
+}
+
+impl PartialEq for Table {
+    /// Columns, rows and units alike, a missing unit taken as `""`: the header of
+    /// [`Table::write_csv`] writes it as none, which reads back as `""`, and the table read
+    /// back is the same table.
+    fn eq(&self, other: &Table) -> bool {
+        fn unit(units: &[String], k: usize) -> &str {
+            units.get(k).map_or("", String::as_str)
+        }
+        let units = self.units.len().max(other.units.len());
+        self.columns == other.columns
+            && self.rows == other.rows
+            && (0..units).all(|k| unit(&self.units, k) == unit(&other.units, k))
     }
 }
 
@@ -325,7 +353,7 @@ impl Table {
     /// such a header, and what is written reads back. More units than columns is an
     /// `InvalidInput` error naming both counts, as serde refuses such a table: the header has
     /// no place for the others. Fewer is well formed (a missing unit is none), and reads back
-    /// with `""` for each missing unit.
+    /// with `""` for each missing unit: an equal table, as `==` takes a missing unit for `""`.
     pub fn write_csv(&self, w: impl Write) -> io::Result<()> {
         check_units_to_write(self.units.len(), self.columns.len())?;
         if self.columns.is_empty() {

@@ -199,3 +199,26 @@ fn more_units_than_columns_are_refused_when_written() {
     let back = Table::read_csv(&csv[..]).unwrap();
     assert_eq!((back.units, back.rows), (vec!["rad".to_string(), String::new()], t.rows));
 }
+
+/// Fewer units than columns is well formed, a missing unit none: the CSV reads back with `""`
+/// for it, and that is the same table (`==` takes a missing unit for `""`), where it compared
+/// unequal to the table written. A unit that differs still makes the tables differ.
+#[test]
+fn a_table_of_fewer_units_than_columns_reads_back_as_itself() {
+    let mut t = Table::new(vec!["phi".into(), "x".into(), "y".into()]);
+    t.push(vec![0.5, 1.0, -2.0]);
+    for units in [vec![], vec!["rad".to_string()], vec!["rad".to_string(), String::new()]] {
+        let t = Table { units, ..t.clone() };
+        let mut csv = Vec::new();
+        t.write_csv(&mut csv).unwrap();
+        let back = Table::read_csv(&csv[..]).unwrap();
+        assert_eq!(back.units.len(), 3, "{:?}", back.units);
+        assert_eq!(back, t, "{}", String::from_utf8_lossy(&csv));
+        assert_eq!(t, back);
+    }
+    let with_rad = Table { units: vec!["rad".into()], ..t.clone() };
+    let with_mm = Table { units: vec!["rad".into(), String::new(), "mm".into()], ..t.clone() };
+    assert_ne!(with_rad, with_mm);
+    assert_ne!(with_mm, with_rad);
+    assert_ne!(Table { units: vec![], ..t.clone() }, with_rad);
+}

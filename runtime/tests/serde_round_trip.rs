@@ -69,11 +69,17 @@ fn a_table_of_the_wrong_shape_is_refused_saying_where() {
     let units = r#"{"columns":["phi"],"rows":[[0.5]],"units":["rad","mm"]}"#;
     let err = serde_json::from_str::<Table>(units).unwrap_err().to_string();
     assert!(err.contains("the table has 2 units for 1 columns"), "{err}");
+    // A name twice, as `read_csv` refuses it: `Table::column` would find the first alone.
+    let twice = r#"{"columns":["x","y","x"],"rows":[[1.0,2.0,3.0]]}"#;
+    let err = serde_json::from_str::<Table>(twice).unwrap_err().to_string();
+    assert!(err.contains("the column name `x` appears twice (columns 1 and 3)"), "{err}");
     // Well formed, with fewer units than columns (a missing one is none) or none at all.
     let fewer: Table = serde_json::from_str(r#"{"columns":["phi","x"],"rows":[[0.5,1.0]],"units":["rad"]}"#).unwrap();
     assert_eq!((fewer.unit("phi"), fewer.unit("x"), fewer.column("x")), (Some("rad"), Some(""), Some(vec![1.0])));
     let none: Table = serde_json::from_str(r#"{"columns":["phi"],"rows":[]}"#).unwrap();
     assert_eq!(none, Table { columns: vec!["phi".into()], rows: Vec::new(), units: Vec::new() });
+    // Read with one unit per column, as from CSV: a missing one is `""`.
+    assert_eq!((fewer.units, none.units), (vec!["rad".to_string(), String::new()], vec![String::new()]));
 }
 
 /// A state of other sizes is refused naming the field, or the row of it, whose length does
