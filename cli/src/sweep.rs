@@ -458,4 +458,37 @@ mod tests {
         }
         let _ = std::fs::remove_file(&path);
     }
+
+    /// The events' file holds a column of text, `kind`, which `Table::read_csv` refuses naming
+    /// it (as its documentation says); the columns after it are written as a table's, and
+    /// without `kind` the file reads back as one: names, units and every value to the bit.
+    #[test]
+    fn events_are_a_table_but_for_their_kind() {
+        let model = Model::read("four_bar.kl", FOUR_BAR).expect("the declaration reads");
+        let events = [
+            Event { kind: EventKind::LimitPosition, x: vec![1.9446], tau: 0.125, q: vec![-0.0, 5e-324], block: None },
+            Event {
+                kind: EventKind::SingularCrossing,
+                x: vec![1e300],
+                tau: 1.0,
+                q: vec![0.1 + 0.2, -1e-7],
+                block: None,
+            },
+        ];
+        let path = std::env::temp_dir().join(format!("kinloop-events-table-{}.csv", std::process::id()));
+        write_events(&model, &events, false, Some(std::fs::File::create(&path).expect("a file"))).expect("written");
+        let text = std::fs::read_to_string(&path).expect("read back");
+        let _ = std::fs::remove_file(&path);
+        let err = Table::read_csv(text.as_bytes()).expect_err("a column of text").to_string();
+        assert!(err.contains("column `kind` holds `limit position`"), "{err}");
+        let numbers: String = text.lines().map(|l| l.split_once(',').expect("a kind").1.to_string() + "\n").collect();
+        let table = Table::read_csv(numbers.as_bytes()).unwrap_or_else(|e| panic!("{e}: {numbers}"));
+        assert_eq!(table.columns, ["tau", "phi", "psi", "theta"]);
+        assert_eq!(table.units, ["", "rad", "rad", "rad"]);
+        // A zero is written without its sign, as the table's rows write it.
+        let want = [[0.125, 1.9446, 0.0, 5e-324], [1.0, 1e300, 0.1 + 0.2, -1e-7]];
+        for (row, want) in table.rows.iter().zip(want) {
+            assert_eq!(row.iter().map(|v| v.to_bits()).collect::<Vec<_>>(), want.map(f64::to_bits), "{text}");
+        }
+    }
 }

@@ -147,6 +147,22 @@ fn csv_error(e: csv::Error) -> io::Error {
     }
 }
 
+/// The `InvalidData` error of a field that is not a number, on line `line` of the file under
+/// `column`: it quotes the field, or says that it is empty (a value missing, or a column of
+/// text with nothing in this row: an empty field quoted read as a misprint), and that a table
+/// holds numbers alone.
+fn not_a_number(line: usize, field: &str, column: &str) -> io::Error {
+    let what = match field.trim() {
+        "" => "is empty".to_string(),
+        _ => format!("holds `{field}`"),
+    };
+    let message = format!(
+        "CSV line {line}: column `{column}` {what}, which is not a number: a table holds numbers alone (NaN where a \
+         value is not known), and reads no column of text"
+    );
+    io::Error::new(io::ErrorKind::InvalidData, message)
+}
+
 /// The CSV of a table of no columns: nothing, for no rows (which reads back as that table),
 /// and for `rows` rows an `InvalidInput` error. CSV has no line for a row of no values: the
 /// csv crate writes a record of none as `""`, one empty field, which would read back as a
@@ -383,9 +399,17 @@ impl Table {
     /// Reads a table written by [`Table::write_csv`] (or any CSV with a header line and numeric
     /// fields, positional or in exponent notation; `NaN`, `inf` and `-inf` as Rust writes
     /// them). Header fields are trimmed as numbers are (`phi, x` has a column `x`). Errors are
-    /// `InvalidData`: a field that is not a number (naming its line and column), a row of
-    /// another length than the header (naming its line), a column name that appears twice
-    /// (naming it), or text that is not UTF-8.
+    /// `InvalidData`: a field that is not a number (naming its line and column, and what it
+    /// holds or that it is empty), a row of another length than the header (naming its line),
+    /// a column name that appears twice (naming it), or text that is not UTF-8.
+    ///
+    /// A table holds numbers alone: a file with a column of text is refused at its first row,
+    /// naming the column. The command line writes three such files, whose other columns are
+    /// numbers: the events of `kinloop sweep --events`
+    /// and `kinloop trace --events` (`kind`: `limit position`, `singular crossing`, `kink`),
+    /// the candidates of `kinloop synth --csv` (`defects`, empty for a valid candidate) and the
+    /// extremes of `kinloop extremes` (`column` and `unit`). Read them with a CSV reader (the
+    /// `csv` crate, a spreadsheet).
     pub fn read_csv(r: impl io::Read) -> io::Result<Table> {
         let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
         let header = input.headers().map_err(csv_error)?;
@@ -394,12 +418,10 @@ impl Table {
         let mut t = Table { columns, rows: Vec::new(), units };
         for (line, record) in input.records().enumerate() {
             let record = record.map_err(csv_error)?;
+            let line = line + 2;
             let row = record.iter().enumerate().map(|(k, field)| {
-                field.trim().parse::<f64>().map_err(|_| {
-                    let column = t.columns.get(k).map_or("?", String::as_str);
-                    let message = format!("CSV line {}: `{field}` in column `{column}` is not a number", line + 2);
-                    io::Error::new(io::ErrorKind::InvalidData, message)
-                })
+                let column = t.columns.get(k).map_or("?", String::as_str);
+                field.trim().parse::<f64>().map_err(|_| not_a_number(line, field, column))
             });
             t.rows.push(row.collect::<io::Result<Vec<f64>>>()?);
         }

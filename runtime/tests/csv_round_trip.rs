@@ -222,3 +222,19 @@ fn a_table_of_fewer_units_than_columns_reads_back_as_itself() {
     assert_ne!(with_mm, with_rad);
     assert_ne!(Table { units: vec![], ..t.clone() }, with_rad);
 }
+
+/// A column of text (the command line's events, candidates and extremes have one) is refused
+/// at its first row naming the column and what it holds, an empty field as empty (quoted, it
+/// read as a misprint), and saying that a table holds numbers alone.
+#[test]
+fn a_column_of_text_is_refused_naming_it_and_saying_why() {
+    let events = "kind,tau,phi [rad]\nlimit position,0.25,1.5\n";
+    let err = Table::read_csv(events.as_bytes()).unwrap_err().to_string();
+    assert!(err.contains("CSV line 2: column `kind` holds `limit position`, which is not a number"), "{err}");
+    assert!(err.contains("a table holds numbers alone"), "{err}");
+    let candidates = "rank,start,valid,a,max_error,defects\n1,0,1,1.1,0.001,\"\"\n";
+    let err = Table::read_csv(candidates.as_bytes()).unwrap_err().to_string();
+    assert!(err.contains("CSV line 2: column `defects` is empty, which is not a number"), "{err}");
+    let blank = Table::read_csv("a,b\n1, \n".as_bytes()).unwrap_err().to_string();
+    assert!(blank.contains("column `b` is empty"), "{blank}");
+}
