@@ -286,6 +286,9 @@
 //! `mint`, `mint::Vector2`). With the feature `serde`, parameter sets, named positions and
 //! outputs, states, tables, events and configurations implement `Serialize` and `Deserialize`
 //! (the generated structs name serde through `kinloop`, so no serde dependency is needed).
+//! Through JSON, serde_json reads every number back to the bit with its feature
+//! `float_roundtrip` (`serde_json = { version = "1", features = ["float_roundtrip"] }`);
+//! without it, its faster parser may read the last bit of some numbers differently.
 //! Configurations ([`SweepConfig`], [`NewtonConfig`], the optimisers) are built from their
 //! defaults with `with_*` methods: `SweepConfig::default().with_max_step(0.5)`.
 //!

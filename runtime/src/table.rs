@@ -64,7 +64,9 @@ impl ColumnKey for &String {
 /// or which name), as [`Table::push`] keeps it and [`Table::read_csv`] reads it. JSON holds
 /// no NaN nor infinity: a table writes them there as the strings `"NaN"`, `"inf"` and
 /// `"-inf"`, which read back as they were (as does `null`, read as NaN); a format that holds
-/// them keeps them.
+/// them keeps them. serde_json reads every number back to the bit only with its
+/// feature `float_roundtrip`: without it, its parser may read the last bit of some numbers
+/// differently.
 ///
 /// Two tables are equal (`==`) when their columns, rows and units are, a missing unit equal to
 /// `""` (none), as [`Table::unit`] reads it: a table of fewer units than columns equals what

@@ -200,6 +200,63 @@ fn more_units_than_columns_are_refused_when_written() {
     assert_eq!((back.units, back.rows), (vec!["rad".to_string(), String::new()], t.rows));
 }
 
+/// The edge values of `f64` (NaN, both infinities, both zeros, the smallest subnormal and the
+/// largest, the smallest normal, 1e308 and the largest finite) under names a header must quote
+/// or keep as they are (a comma, a quote, spaces inside, a line break, non-ASCII letters) with
+/// units alike: every name, unit and value reads back, each value to the bit (a NaN as a NaN).
+/// The expected bits are the literals' own, written out (printed by `csv_round_trip_bits.py`
+/// beside this file, Python's doubles): the table is not its own reference.
+#[test]
+fn edge_values_and_awkward_names_read_back_to_the_bit() {
+    let values = [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        0.0,
+        -0.0,
+        5e-324,
+        -2.225073858507201e-308,
+        f64::MIN_POSITIVE,
+        1e308,
+        -f64::MAX,
+        0.1 + 0.2,
+    ];
+    let bits: [u64; 11] = [
+        0x7ff8_0000_0000_0000,
+        0x7ff0_0000_0000_0000,
+        0xfff0_0000_0000_0000,
+        0x0000_0000_0000_0000,
+        0x8000_0000_0000_0000,
+        0x0000_0000_0000_0001,
+        0x800f_ffff_ffff_ffff,
+        0x0010_0000_0000_0000,
+        0x7fe1_ccf3_85eb_c8a0,
+        0xffef_ffff_ffff_ffff,
+        0x3fd3_3333_3333_3334,
+    ];
+    let names = ["a,b", "say \"hi\"", "with  spaces", "line\nbreak", "φ₁ of Ünïcode", "x ", "ok"];
+    let units = ["µm", "°/s", "a, \"b\"", "", "N·m", "m s", "kg/(m s)^2"];
+    let mut t = Table::new(names.iter().map(|n| n.to_string()).collect());
+    t.units = units.iter().map(|u| u.to_string()).collect();
+    // Each value in each column: the rows are the values turned by one place per column.
+    for r in 0..values.len() {
+        t.push((0..names.len()).map(|c| values[(r + c) % values.len()]).collect());
+    }
+    let mut csv = Vec::new();
+    t.write_csv(&mut csv).unwrap();
+    let text = String::from_utf8(csv.clone()).unwrap();
+    let back = Table::read_csv(&csv[..]).unwrap_or_else(|e| panic!("{e}:\n{text}"));
+    assert_eq!((&back.columns, &back.units), (&t.columns, &t.units), "{text}");
+    assert_eq!(back.rows.len(), values.len());
+    for (r, row) in back.rows.iter().enumerate() {
+        for (c, v) in row.iter().enumerate() {
+            let want = bits[(r + c) % values.len()];
+            // NaN's payload is not written: any NaN reads back as the quiet NaN `f64::NAN` is.
+            assert_eq!(v.to_bits(), want, "row {r}, column {c}: {v:e}\n{text}");
+        }
+    }
+}
+
 /// Fewer units than columns is well formed, a missing unit none: the CSV reads back with `""`
 /// for it, and that is the same table (`==` takes a missing unit for `""`), where it compared
 /// unequal to the table written. A unit that differs still makes the tables differ.
