@@ -295,3 +295,16 @@ fn a_column_of_text_is_refused_naming_it_and_saying_why() {
     let blank = Table::read_csv("a,b\n1, \n".as_bytes()).unwrap_err().to_string();
     assert!(blank.contains("column `b` is empty"), "{blank}");
 }
+
+/// A file as a spreadsheet saves it: a UTF-8 byte order mark before the header, lines ended
+/// by CRLF, a blank line at the end. The mark is not part of the first name, nor the CR of
+/// the last field's value: the same table as the plain file.
+#[test]
+fn a_spreadsheet_s_file_reads_as_the_plain_one() {
+    let plain = Table::read_csv("phi [rad],x [mm]\n0.5,1.25\n-0,1e-300\n".as_bytes()).unwrap();
+    let saved = Table::read_csv("\u{feff}phi [rad],x [mm]\r\n0.5,1.25\r\n-0,1e-300\r\n\r\n".as_bytes()).unwrap();
+    assert_eq!(saved, plain);
+    assert_eq!(saved.columns, ["phi", "x"]);
+    assert_eq!(saved.unit("x"), Some("mm"));
+    assert_eq!(saved.rows[1][0].to_bits(), (-0.0f64).to_bits());
+}
