@@ -31,8 +31,10 @@
 //!   `r @ (phi + gamma)`. The length comes first: a name that is an angle (it turns a link
 //!   elsewhere, `l @ psi`, is the argument of a sine or cosine, is set to an angle by an `eq`, or
 //!   has its value written in degrees) written as the length, `psi @ l`, is a compile error
-//!   that says to write `l @ psi`. A name of no known kind cannot be told from a length, so a
-//!   swap whose angle is an angle nowhere else compiles as written.
+//!   that says to write `l @ psi`; so is a length written in degrees itself, `deg(30) @ l`. A
+//!   value in degrees may be scaled by a number or offset by one (`2 * deg(15)`,
+//!   `deg(90) - pi / 6`): it is an angle all the same. A name of no known kind cannot be told
+//!   from a length, so a swap whose angle is an angle nowhere else compiles as written.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

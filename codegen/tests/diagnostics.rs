@@ -543,3 +543,45 @@ fn a_body_turning_with_the_length_of_a_polar_term_is_told_of_the_swap() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("`x` is not an angle") && !e[0].contains("help:"), "{e:#?}");
 }
+
+/// An angle written in degrees and scaled by a number, or added to one, is as much an angle as
+/// `deg(15)` alone: as a name's value (`th = 2 * deg(15)`), and as the length of a polar term
+/// itself (`deg(3) @ psi`), which compiled into a link 0.05 units long.
+#[test]
+fn degrees_scaled_or_offset_are_angles_where_the_length_of_a_polar_term_belongs() {
+    for guess in ["deg(15)", "2 * deg(15)", "deg(15) * 2", "deg(30) / 2", "-(deg(10) + deg(5))", "deg(90) - pi / 4"] {
+        let e = errors(&format!(
+            "pub struct S {{ params r, d; input phi; unknowns th = {guess}, s = d;
+             loop oab: r @ phi == (d, 0) + th @ s; }}"
+        ));
+        assert_eq!(e.len(), 1, "{guess}: {e:#?}");
+        assert!(e[0].starts_with("`th` is an angle (its value is written in degrees)"), "{guess}: {e:#?}");
+        assert!(e[0].ends_with("write `s @ th`"), "{guess}: {e:#?}");
+    }
+    for (length, swapped) in [("deg(3)", "psi @ deg(3)"), ("2 * deg(15)", "psi @ (2 * deg(15))")] {
+        let e = errors(&format!(
+            "pub struct S {{ params r; input phi; unknowns psi, x;
+             loop oab: r @ phi == (x, 0) + {length} @ psi; }}"
+        ));
+        assert_eq!(e.len(), 1, "{length}: {e:#?}");
+        assert!(e[0].starts_with(&format!("`{length}` is an angle (its value is written in degrees)")), "{e:#?}");
+        assert!(e[0].ends_with(&format!("write `{swapped}`")), "{e:#?}");
+    }
+    // A constant direction: no length to swap with.
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi, x;
+         loop oab: r @ phi + deg(30) @ 0 == (x, 0) + l @ psi; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].ends_with("write a length there, such as `r * deg(30)` for the arc a radius `r` rolls"), "{e:#?}");
+    // A product of degrees with a name or with degrees is of no certain kind; an angle turning a
+    // link stays where it belongs.
+    for body in [
+        "params r, k, d; input phi; unknowns th = k * deg(15), s = d; loop c: r @ phi == (d, 0) + th @ s;",
+        "params r, d; input phi; unknowns th = deg(15) * deg(15), s = d; loop c: r @ phi == (d, 0) + th @ s;",
+        "params r, l; input phi; unknowns psi = 2 * deg(15), x; loop c: r @ phi == (x, 0) + l @ (psi + deg(5));",
+    ] {
+        assert_eq!(errors(&format!("pub struct S {{ {body} }}")), Vec::<String>::new(), "{body}");
+    }
+}
+

@@ -164,13 +164,41 @@ pub enum Expr {
 
 impl Expr {
     /// Whether the expression is written in degrees, `deg(...)` (negated or in parentheses
-    /// too): the value is then certainly an angle, whatever number it is.
+    /// too), or is such a value scaled by a number (`2 * deg(15)`, `deg(15) * 2`,
+    /// `deg(30) / 2`) or added to one or to another such value (`deg(90) + pi / 4`,
+    /// `deg(10) + deg(5)`): the value is then certainly an angle, whatever number it is. A
+    /// product of two of them, or of one with a name, is not: its kind is not certain.
     pub fn written_in_degrees(&self) -> bool {
         match self {
             Expr::Call { func, .. } => func == "deg",
             Expr::Neg { expr, .. } => expr.written_in_degrees(),
             Expr::Paren { inner, .. } => inner.written_in_degrees(),
+            Expr::Binary { op: BinOp::Mul, lhs, rhs, .. } => {
+                (lhs.written_in_degrees() && rhs.is_plain_number())
+                    || (lhs.is_plain_number() && rhs.written_in_degrees())
+            }
+            Expr::Binary { op: BinOp::Div, lhs, rhs, .. } => lhs.written_in_degrees() && rhs.is_plain_number(),
+            Expr::Binary { op: BinOp::Add | BinOp::Sub, lhs, rhs, .. } => {
+                // At least one term in degrees, and the other in degrees or a plain number.
+                let term = |e: &Expr| e.written_in_degrees() || e.is_plain_number();
+                (lhs.written_in_degrees() || rhs.written_in_degrees()) && term(lhs) && term(rhs)
+            }
             _ => false,
+        }
+    }
+
+    /// Whether the expression is a number without a unit: literals, `pi`, and operations and
+    /// calls of those, with no name and no value in degrees.
+    fn is_plain_number(&self) -> bool {
+        match self {
+            Expr::Num { .. } => true,
+            Expr::Var(id) => id == "pi",
+            Expr::Neg { expr, .. } => expr.is_plain_number(),
+            Expr::Paren { inner, .. } => inner.is_plain_number(),
+            Expr::Binary { op: BinOp::Polar, .. } => false,
+            Expr::Binary { lhs, rhs, .. } => lhs.is_plain_number() && rhs.is_plain_number(),
+            Expr::Call { func, args, .. } => func != "deg" && args.iter().all(Expr::is_plain_number),
+            Expr::Tuple { .. } | Expr::Field { .. } => false,
         }
     }
 

@@ -268,3 +268,44 @@ fn product(a: Dim, b: Dim, sign: i32) -> Dim {
         },
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kinds of the inputs and unknowns of a declaration.
+    fn kinds_of(src: &str) -> (Vec<Kind>, Vec<Kind>) {
+        let p = crate::plan_declaration(src.parse().expect("tokens")).unwrap_or_else(|e| panic!("{e}"));
+        let k = classify(&p.model, &p.plan.graph, &p.plan.residuals, &p.plan.outputs);
+        (k.inputs, k.unknowns)
+    }
+
+    /// A cam's law compares the input with a start and divides by a rise written in degrees:
+    /// the input is an angle by them, however the degrees are scaled (`2 * deg(15)` is 30
+    /// degrees as much as `deg(30)` is), and so is an unknown whose guess is scaled degrees.
+    /// A multiple of degrees by a name is of no certain kind, and infers nothing.
+    #[test]
+    fn degrees_scaled_by_a_number_are_angles_as_degrees_are() {
+        for (start, rise, guess) in [
+            ("deg(30)", "deg(120)", "deg(10)"),
+            ("2 * deg(15)", "deg(60) * 2", "deg(20) / 2"),
+            ("-(deg(5) - deg(35))", "deg(90) + pi / 6", "0.5 * deg(20)"),
+        ] {
+            let src = format!(
+                "pub struct Cam {{ params h = 0.02, phi0 = {start}, rise = {rise}; input phi;
+                 unknowns s, w = {guess};
+                 let u = clamp((phi - phi0) / rise, 0, 1);
+                 eq lift: s == h * u ^ 2;
+                 eq lag: w == phi0 * u; }}"
+            );
+            assert_eq!(kinds_of(&src), (vec![Kind::Angle], vec![Kind::Other, Kind::Angle]), "{start}, {rise}, {guess}");
+        }
+        let src = "pub struct Cam { params h = 0.02, k = 2, rise = k * deg(60); input phi; unknowns s;
+                   eq lift: s == h * clamp(phi / rise, 0, 1); }";
+        // `k * deg(60)` is no constant: refused as a default before any kind is inferred.
+        assert!(crate::plan_declaration(src.parse().expect("tokens")).is_err());
+        let src = "pub struct Cam { params h = 0.02, k = 2; input phi; unknowns s, w = k * deg(10);
+                   eq lift: s == h * phi; eq lag: w == k * s; }";
+        assert_eq!(kinds_of(src).1[1], Kind::Other);
+    }
+}

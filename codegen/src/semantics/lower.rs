@@ -60,12 +60,8 @@ impl NamedLength {
             _ => return None,
         };
         let constant_angle = g.as_const(angle).is_some();
-        let angle = match bare(rhs) {
-            e @ (Expr::Binary { .. } | Expr::Neg { .. }) => format!("({})", e.show()),
-            e => e.show(),
-        };
         let term = lhs.range().to(rhs.range());
-        Some(NamedLength { leaf, term, length: name.to_string(), angle, constant_angle })
+        Some(NamedLength { leaf, term, length: name.to_string(), angle: operand(rhs), constant_angle })
     }
 }
 
@@ -75,6 +71,35 @@ fn bare(e: &Expr) -> &Expr {
         Expr::Paren { inner, .. } => bare(inner),
         _ => e,
     }
+}
+
+/// `e` as source text for an operand of `@` in a message, parenthesised where it is an
+/// operation, so that a swapped term reads as one.
+fn operand(e: &Expr) -> String {
+    match bare(e) {
+        e @ (Expr::Binary { .. } | Expr::Neg { .. }) => format!("({})", e.show()),
+        e => e.show(),
+    }
+}
+
+/// The error for a polar term whose length is written in degrees (`deg(3) @ psi`,
+/// `2 * deg(15) @ s`): an angle where the length belongs, which would compile into a link a
+/// fraction of a unit long. `constant_angle`: the angle is a constant, so there is no length
+/// to swap with. `None` for any other length.
+fn degrees_as_length((lhs, rhs): (&Expr, &Expr), constant_angle: bool) -> Option<syn::Error> {
+    if !bare(lhs).written_in_degrees() {
+        return None;
+    }
+    let length = bare(lhs).show();
+    let fix = if constant_angle {
+        format!("write a length there, such as `r * {}` for the arc a radius `r` rolls", operand(lhs))
+    } else {
+        format!("the two are swapped; write `{} @ {}`", operand(rhs), operand(lhs))
+    };
+    Some(lhs.range().to(rhs.range()).error(format!(
+        "`{length}` is an angle (its value is written in degrees), but here it is the length of `@`, \
+         which takes `length @ angle`: {fix}"
+    )))
 }
 
 /// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
@@ -312,6 +337,9 @@ impl Lowerer {
             },
             (BinOp::Polar, Val::S(len), Val::S(angle)) => {
                 self.named_lengths.extend(NamedLength::of(g, sides, len, angle));
+                if let Some(e) = degrees_as_length(sides, g.as_const(angle).is_some()) {
+                    self.errors.push(e);
+                }
                 let c = g.func(Func::Cos, angle);
                 let s = g.func(Func::Sin, angle);
                 Val::V(g.mul(len, c), g.mul(len, s))
