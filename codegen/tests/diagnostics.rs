@@ -585,3 +585,25 @@ fn degrees_scaled_or_offset_are_angles_where_the_length_of_a_polar_term_belongs(
     }
 }
 
+/// A `let`, `point` or `output` defined from itself, or two defined from each other, is not
+/// an ordering mistake that moving a line mends: the message said to move the definition
+/// "above this line", its own line.
+#[test]
+fn a_definition_from_itself_or_in_a_circle_is_not_told_to_move() {
+    for (item, what) in
+        [("let v = v + 1; output w = v;", "let"), ("output v = v * 2;", "output"), ("point v = v + (1, 0);", "point")]
+    {
+        let e = errors(&format!("pub struct S {{ {SLIDER} {item} }}"));
+        assert_eq!(e.len(), 1, "{item}: {e:#?}");
+        assert!(
+            e[0].starts_with(&format!("`v` is used in its own definition: `{what} v = ...;` is computed once")),
+            "{e:#?}"
+        );
+        assert!(e[0].ends_with("declare it with `unknowns` and write that equation as an `eq`"), "{e:#?}");
+    }
+    let e = errors(&format!("pub struct S {{ {SLIDER} output a = b + x; output b = a + x; }}"));
+    assert_eq!(e.len(), 2, "{e:#?}");
+    assert!(e[0].starts_with("`a` and `b` are defined from each other: `output b` below uses `a`"), "{e:#?}");
+    assert_eq!(e[1], "`output b` is defined here, from `a`");
+    assert!(e.iter().all(|m| !m.contains("move")), "{e:#?}");
+}

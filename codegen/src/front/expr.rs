@@ -238,6 +238,23 @@ impl Expr {
         }
     }
 
+    /// Adds the names the expression uses (as values, not the functions it calls), without
+    /// `r#`, to `out`.
+    pub fn names_used(&self, out: &mut std::collections::HashSet<String>) {
+        match self {
+            Expr::Num { .. } => {}
+            Expr::Var(id) => {
+                out.insert(syn::ext::IdentExt::unraw(id).to_string());
+            }
+            Expr::Neg { expr: e, .. } | Expr::Paren { inner: e, .. } | Expr::Field { base: e, .. } => e.names_used(out),
+            Expr::Binary { lhs, rhs, .. } | Expr::Tuple { x: lhs, y: rhs, .. } => {
+                lhs.names_used(out);
+                rhs.names_used(out);
+            }
+            Expr::Call { args, .. } => args.iter().for_each(|a| a.names_used(out)),
+        }
+    }
+
     /// Is this the literal `0` (used for `loop name: a + b - c == 0`)?
     pub fn is_literal_zero(&self) -> bool {
         match self {

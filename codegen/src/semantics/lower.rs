@@ -32,6 +32,12 @@ pub struct Lowerer {
     /// The polar terms whose length is a bare name, for the check that it is not an angle
     /// (`th @ s` for `s @ th`), made once the whole mechanism is lowered ([`super::polar`]).
     pub(super) named_lengths: Vec<NamedLength>,
+    /// The `let`, `point` or `output` whose value is being lowered: a use of its own name
+    /// there is a definition in terms of itself, not a definition further down.
+    pub(super) defining: Option<String>,
+    /// The names each `let`, `point` and `output` uses in its value: a use of one further down
+    /// whose value uses the name being defined is a circle, which moving it up cannot mend.
+    pub(super) later_uses: std::collections::HashMap<String, std::collections::HashSet<String>>,
 }
 
 /// A polar term whose length is a bare name of a parameter, input or unknown, noted while it is
@@ -135,6 +141,8 @@ impl Lowerer {
             labels: Default::default(),
             in_guess: false,
             named_lengths: Vec::new(),
+            defining: None,
+            later_uses: Default::default(),
         }
     }
 

@@ -190,9 +190,9 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     lw.written_in_equations = vec![false; globals.unknowns.len()];
     for item in &items {
         match &item.kind {
-            ItemKind::Let { name, .. } => lw.declare_later(name, "let"),
-            ItemKind::Point { name, .. } => lw.declare_later(name, "point"),
-            ItemKind::Output { name, .. } => lw.declare_later(name, "output"),
+            ItemKind::Let { name, value } => lw.declare_later(name, "let", value),
+            ItemKind::Point { name, value } => lw.declare_later(name, "point", value),
+            ItemKind::Output { name, value } => lw.declare_later(name, "output", value),
             ItemKind::Loop { name, .. } => lw.declare_label(name, "loop"),
             ItemKind::Eq { name, .. } => lw.declare_label(name, "eq"),
             ItemKind::Body(body) => lw.declare_label(&body.name, "body"),
@@ -349,7 +349,7 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
             }
         }
         ItemKind::Decls(..) => {}
-        ItemKind::Let { name, value } => match lw.lower(value) {
+        ItemKind::Let { name, value } => match lw.lower_definition(name, value) {
             Some(v) => {
                 let plain = name.unraw().to_string();
                 match v {
@@ -376,7 +376,7 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
 }
 
 fn lower_point(lw: &mut Lowerer, item: &Item, name: &Ident, value: &Expr, out: &mut Lowered) {
-    match lw.lower(value) {
+    match lw.lower_definition(name, value) {
         Some(Val::V(x, y)) => {
             lw.define(name, Val::V(x, y));
             out.points.push(Point { docs: item.docs.clone(), name: name.clone(), x, y });
@@ -392,7 +392,7 @@ fn lower_point(lw: &mut Lowerer, item: &Item, name: &Ident, value: &Expr, out: &
 }
 
 fn lower_output(lw: &mut Lowerer, item: &Item, name: &Ident, value: &Expr, out: &mut Lowered) {
-    match lw.lower(value) {
+    match lw.lower_definition(name, value) {
         Some(Val::S(v)) => {
             lw.define(name, Val::S(v));
             out.scalars.push(Scalar { docs: item.docs.clone(), name: name.clone(), value: v });

@@ -5,7 +5,9 @@
 use super::lower::Lowerer;
 use super::suggest::similar;
 use super::symbols::{Symbol, Val};
+use crate::front::expr::Expr;
 use crate::graph::dag::Leaf;
+use proc_macro2::Span;
 use syn::Ident;
 use syn::ext::IdentExt;
 
@@ -63,11 +65,62 @@ impl Lowerer {
     }
 
     /// Marks a `let`, `point` or `output` name as defined further down, so that a use above
-    /// its definition is reported as an ordering mistake rather than an unknown name.
-    pub(super) fn declare_later(&mut self, name: &Ident, what: &'static str) {
+    /// its definition is reported as an ordering mistake rather than an unknown name; `value`
+    /// is its definition, whose names are noted to tell a circle from a mere ordering.
+    pub(super) fn declare_later(&mut self, name: &Ident, what: &'static str, value: &Expr) {
         if key(name) != "pi" {
             self.scope.symbols.entry(key(name)).or_insert_with(|| (Symbol::Later(what), name.span()));
+            value.names_used(self.later_uses.entry(key(name)).or_default());
         }
+    }
+
+    /// Lowers the value of the `let`, `point` or `output` called `name`, noting the name as
+    /// the one being defined.
+    pub(super) fn lower_definition(&mut self, name: &Ident, value: &Expr) -> Option<Val> {
+        self.defining = Some(key(name));
+        let v = self.lower(value);
+        self.defining = None;
+        v
+    }
+
+    /// The error for `key`, the name of the `what` at `span`, used before that definition:
+    /// in its own definition, in that of a name its definition uses (a circle), or merely
+    /// above it.
+    fn used_before_definition(&self, id: &Ident, what: &str, span: Span) -> syn::Error {
+        let key = key(id);
+        let instead = "for a value that must satisfy an equation in itself, declare it with `unknowns` and \
+                       write that equation as an `eq`";
+        let defining = self.defining.as_deref();
+        if defining == Some(key.as_str()) {
+            return syn::Error::new(
+                id.span(),
+                format!(
+                    "`{key}` is used in its own definition: `{what} {key} = ...;` is computed once, from names \
+                     defined above it, and cannot refer to itself; {instead}"
+                ),
+            );
+        }
+        if let Some(other) = defining
+            && self.later_uses.get(&key).is_some_and(|uses| uses.contains(other))
+        {
+            let mut e = syn::Error::new(
+                id.span(),
+                format!(
+                    "`{other}` and `{key}` are defined from each other: `{what} {key}` below uses `{other}`, so no \
+                     order of the two defines them (each value is computed once, from names above it); {instead}"
+                ),
+            );
+            e.combine(syn::Error::new(span, format!("`{what} {key}` is defined here, from `{other}`")));
+            return e;
+        }
+        // In a guess, moving the definition up helps only if it uses no unknown.
+        let caveat = if self.in_guess { " (an initial guess may use it only if it uses no unknown)" } else { "" };
+        let mut e = syn::Error::new(
+            id.span(),
+            format!("`{key}` is used before it is defined; move `{what} {key} = ...;` above this line{caveat}"),
+        );
+        e.combine(syn::Error::new(span, format!("`{what} {key}` is defined here, after its use")));
+        e
     }
 
     /// The name of unknown `u`, as declared.
@@ -128,14 +181,7 @@ impl Lowerer {
             Some((Symbol::Let(v), _)) => Some(*v),
             Some((Symbol::Poisoned, _)) => None,
             Some((Symbol::Later(what), span)) => {
-                // In a guess, moving the definition up helps only if it uses no unknown.
-                let caveat =
-                    if self.in_guess { " (an initial guess may use it only if it uses no unknown)" } else { "" };
-                let mut e = syn::Error::new(
-                    id.span(),
-                    format!("`{key}` is used before it is defined; move `{what} {key} = ...;` above this line{caveat}"),
-                );
-                e.combine(syn::Error::new(*span, format!("`{what} {key}` is defined here, after its use")));
+                let e = self.used_before_definition(id, what, *span);
                 self.errors.push(e);
                 None
             }
