@@ -607,3 +607,27 @@ fn a_definition_from_itself_or_in_a_circle_is_not_told_to_move() {
     assert_eq!(e[1], "`output b` is defined here, from `a`");
     assert!(e.iter().all(|m| !m.contains("move")), "{e:#?}");
 }
+
+/// A misspelt item keyword, or another language's word for one, is named with the keyword.
+#[test]
+fn a_misspelt_item_keyword_gets_the_keyword() {
+    for (word, keyword) in [
+        ("lop", "loop"),
+        ("imput", "input"),
+        ("unknows", "unknowns"),
+        ("Loop", "loop"),
+        ("parameters", "params"),
+        ("const", "params"),
+    ] {
+        let e = errors(&format!(
+            "pub struct S {{ params r, l; input phi; unknowns psi, x; {word} c: r @ phi == (x, 0) + l @ psi; }}"
+        ));
+        assert_eq!(e.len(), 1, "{word}: {e:#?}");
+        assert!(e[0].starts_with(&format!("`{word}` does not start an item (did you mean `{keyword}`?); ")), "{e:#?}");
+    }
+    // A word like no keyword gets the list alone.
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi, x; link c = r @ phi; loop c: r @ phi == (x, 0) + l @ psi; }",
+    );
+    assert!(e[0].starts_with("`link` does not start an item; an item starts with"), "{e:#?}");
+}

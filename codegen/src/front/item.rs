@@ -97,8 +97,9 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
         ItemKind::Gravity { value }
     } else {
         let mut err = look.error();
-        if let Ok(id) = input.fork().parse::<Ident>() {
-            err = syn::Error::new(id.span(), format!("`{id}` does not start an item; {ITEMS}"));
+        // Rust's own keywords too (`const`, `fn`): syn's message for them lists its peeks.
+        if let Ok(id) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
+            err = syn::Error::new(id.span(), format!("`{id}` does not start an item{}; {ITEMS}", keyword_hint(&id)));
         }
         return Err(err);
     };
@@ -184,6 +185,28 @@ fn at_item_start(input: ParseStream) -> bool {
         || input.peek(kw::torque)
         || input.peek(kw::gravity)
         || input.peek(Token![#])
+}
+
+/// The words that start an item, for did-you-mean suggestions.
+const KEYWORDS: &[&str] = &[
+    "params", "input", "inputs", "unknowns", "let", "loop", "eq", "point", "output", "body", "force", "torque",
+    "gravity",
+];
+
+/// Words of other languages for an item's keyword, with the keyword to write.
+const KEYWORD_ALIASES: &[(&str, &str)] =
+    &[("parameters", "params"), ("const", "params"), ("var", "unknowns"), ("equation", "eq"), ("constraint", "eq")];
+
+/// "; did you mean `loop`?" after `lop`, a misspelt keyword (or another language's word for
+/// one); empty for a word like none of them.
+fn keyword_hint(word: &Ident) -> String {
+    let word = word.to_string();
+    let keywords: Vec<String> = KEYWORDS.iter().map(|k| k.to_string()).collect();
+    let alias = KEYWORD_ALIASES.iter().find(|(a, _)| a.eq_ignore_ascii_case(&word)).map(|(_, k)| k.to_string());
+    match alias.or_else(|| super::suggest::similar(&word, keywords.iter()).cloned()) {
+        Some(k) => format!(" (did you mean `{k}`?)"),
+        None => String::new(),
+    }
 }
 
 const ITEMS: &str = "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point`, `output`, \

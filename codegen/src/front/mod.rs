@@ -4,7 +4,8 @@
 //! input can overflow the stack in the recursive parsers behind it; [`declaration`] then parses
 //! the declaration (one item at a time in `item`, the dynamics' items in `dynamics`) into the
 //! tree of [`syntax`], with [`expr`] for expressions, and [`names`] rejects names the generated
-//! code cannot use.
+//! code cannot use. [`suggest`] finds the did-you-mean of a misspelt word, for the front and the
+//! stages after it.
 
 pub mod declaration;
 mod dynamics;
@@ -12,4 +13,5 @@ pub mod expr;
 mod item;
 pub mod limits;
 pub mod names;
+pub mod suggest;
 pub mod syntax;

@@ -2,9 +2,9 @@
 
 use super::builtins::{self, Builtin, HINTS, Kind, Lowering};
 use super::lower::{Lowerer, integer_exponent};
-use super::suggest::similar;
 use super::symbols::Val;
 use crate::front::expr::{Expr, SpanRange};
+use crate::front::suggest::similar;
 use crate::graph::dag::{Func, Graph, NodeId};
 use proc_macro2::Span;
 use syn::Ident;

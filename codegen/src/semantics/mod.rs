@@ -10,5 +10,4 @@ pub mod lower;
 pub mod model;
 mod polar;
 mod scope;
-pub mod suggest;
 mod symbols;

@@ -3,9 +3,9 @@
 //! below both this file and the lowering).
 
 use super::lower::Lowerer;
-use super::suggest::similar;
 use super::symbols::{Symbol, Val};
 use crate::front::expr::Expr;
+use crate::front::suggest::similar;
 use crate::graph::dag::Leaf;
 use proc_macro2::Span;
 use syn::Ident;
