@@ -34,7 +34,9 @@
 //!   that says to write `l @ psi`; so is a length written in degrees itself, `deg(30) @ l`. A
 //!   value in degrees may be scaled by a number or offset by one (`2 * deg(15)`,
 //!   `deg(90) - pi / 6`): it is an angle all the same. A name of no known kind cannot be told
-//!   from a length, so a swap whose angle is an angle nowhere else compiles as written.
+//!   from a length, so a swap whose angle is an angle nowhere else compiles as written. For
+//!   the same reason a loop, which adds lengths, refuses such an angle as a coordinate of one
+//!   of its vectors, `(x, phi)`: write a length there, `(x, r * phi)`.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

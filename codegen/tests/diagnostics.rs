@@ -631,3 +631,30 @@ fn a_misspelt_item_keyword_gets_the_keyword() {
     );
     assert!(e[0].starts_with("`link` does not start an item; an item starts with"), "{e:#?}");
 }
+
+/// A loop adds lengths: an angle as a coordinate of one of its vectors compiled into a
+/// mechanism whose every result changed with the unit of length (`(x, phi)` with `phi` in
+/// radians beside `x` in millimetres).
+#[test]
+fn an_angle_as_a_coordinate_in_a_loop_is_a_unit_mix() {
+    for (body, name, why) in [
+        ("loop c: r @ phi == (x, phi) + l @ psi;", "phi", "elsewhere it turns a link"),
+        ("loop c: r @ phi == (x, 0) + l @ psi + ((psi), 0);", "psi", "elsewhere it turns a link"),
+        ("loop c: r @ phi == (x, e) + l @ psi;", "e", "its value is written in degrees"),
+    ] {
+        let e = errors(&format!("pub struct S {{ params r, l, e = deg(5); input phi; unknowns psi, x; {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        assert!(e[0].starts_with(&format!("`{name}` is an angle ({why}")), "{e:#?}");
+        assert!(e[0].ends_with(&format!("such as `r * {name}` for the arc a radius `r` rolls")), "{e:#?}");
+    }
+    // Lengths, a rolled arc, a name of no known kind, and an angle in a point or an `eq` (not a
+    // loop) stay as written.
+    for body in [
+        "params r, l, e; input phi; unknowns psi, x; loop c: r @ phi == (x, e) + l @ psi;",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi + (r * phi, 0) == (x, 0) + l @ psi;",
+        "params r, l; input t; unknowns psi, x; loop c: r @ psi == (x, t) + (l, 0);",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; point p = (phi, psi);",
+    ] {
+        assert_eq!(errors(&format!("pub struct S {{ {body} }}")), Vec::<String>::new(), "{body}");
+    }
+}

@@ -122,7 +122,7 @@ fn angles_that_repeat_every_turn_are_marked_for_newton() {
         ("loop w: (x, 0) + r @ th == (u + r * th, x);", "rolling"),
         ("loop w: (x, 0) + r @ (th / 2) == (u, x);", "half angle"),
         ("loop w: (x, 0) + r @ (1.5 * th) == (u, x);", "ratio"),
-        ("loop w: (x, 0) + r @ (2 * th) == (u, x) + (0, th);", "beside its sine"),
+        ("loop w: (x, 0) + r @ (2 * th) == (u, x) + (0, r * th);", "beside its sine"),
     ] {
         let decl =
             format!("#[kinloop(newton)] pub struct W {{ params r = 1.0; input u; unknowns x = 0, th = 0.5; {loop_} }}");

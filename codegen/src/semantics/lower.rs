@@ -32,6 +32,11 @@ pub struct Lowerer {
     /// The polar terms whose length is a bare name, for the check that it is not an angle
     /// (`th @ s` for `s @ th`), made once the whole mechanism is lowered ([`super::polar`]).
     pub(super) named_lengths: Vec<NamedLength>,
+    /// Set while a `loop` is lowered: the coordinates of its Cartesian vectors are lengths.
+    pub(super) in_loop: bool,
+    /// The coordinates of Cartesian vectors in loops that are a bare name, for the check that
+    /// the name is not an angle (`(x, phi)`), made with the polar terms' ([`super::polar`]).
+    pub(super) named_coordinates: Vec<NamedCoordinate>,
     /// The `let`, `point` or `output` whose value is being lowered: a use of its own name
     /// there is a definition in terms of itself, not a definition further down.
     pub(super) defining: Option<String>,
@@ -68,6 +73,31 @@ impl NamedLength {
         let constant_angle = g.as_const(angle).is_some();
         let term = lhs.range().to(rhs.range());
         Some(NamedLength { leaf, term, length: name.to_string(), angle: operand(rhs), constant_angle })
+    }
+}
+
+/// A coordinate of a Cartesian vector in a `loop` that is a bare name of a parameter, input or
+/// unknown, noted while it is lowered for the check that the name is not an angle
+/// ([`super::polar`]).
+pub(super) struct NamedCoordinate {
+    /// The name's leaf.
+    pub(super) leaf: Leaf,
+    /// The coordinate as written.
+    pub(super) range: SpanRange,
+    /// The name as written.
+    pub(super) name: String,
+}
+
+impl NamedCoordinate {
+    /// The coordinate `e` (lowered to `n`), if it is a bare name of a parameter, input or
+    /// unknown.
+    fn of(g: &Graph, e: &Expr, n: NodeId) -> Option<Self> {
+        let Expr::Var(name) = bare(e) else { return None };
+        let leaf = match g.op(n) {
+            Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))) => l,
+            _ => return None,
+        };
+        Some(NamedCoordinate { leaf, range: e.range(), name: name.to_string() })
     }
 }
 
@@ -141,6 +171,8 @@ impl Lowerer {
             labels: Default::default(),
             in_guess: false,
             named_lengths: Vec::new(),
+            in_loop: false,
+            named_coordinates: Vec::new(),
             defining: None,
             later_uses: Default::default(),
         }
@@ -232,6 +264,12 @@ impl Lowerer {
             Expr::Tuple { x, y, .. } => {
                 let xs = self.lower_component(x);
                 let ys = self.lower_component(y);
+                if self.in_loop {
+                    for (e, n) in [(x, xs), (y, ys)] {
+                        let noted = n.and_then(|n| NamedCoordinate::of(&self.graph, e, n));
+                        self.named_coordinates.extend(noted);
+                    }
+                }
                 Val::V(xs?, ys?)
             }
             Expr::Field { base, component, name } => return self.field(base, *component, name),

@@ -364,9 +364,11 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         ItemKind::Output { name, value } => lower_output(lw, item, name, value, out),
         ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
             lw.in_equation = true;
+            lw.in_loop = matches!(item.kind, ItemKind::Loop { .. });
             lw.written_here.clear();
             lower_equation_item(lw, item, name, (lhs, rhs, *eq), out);
             lw.in_equation = false;
+            lw.in_loop = false;
         }
         ItemKind::Body(b) => out.dynamics.body(lw, b),
         ItemKind::Force { name, at, value } => out.dynamics.force(lw, name, at, value),

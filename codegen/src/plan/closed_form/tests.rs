@@ -143,8 +143,9 @@ fn near_misses_keep_newton() {
         // A slotted rocker with an offset slot: quartic, not a closed form here.
         "pub struct R { params r, h, e; input phi; unknowns s, th;
          loop o: (0, h) + r @ phi == s @ th + e @ (th + pi / 2); }",
-        // The slider inside an angle; a slider squared with the angle.
-        "pub struct Trial { params r, l; input phi; unknowns psi, x; loop o: r @ phi == (x, 0) + l @ (psi + x); }",
+        // The slider inside an angle (scaled into one: a slider that is an angle too would
+        // be a unit mix, refused); a slider squared with the angle.
+        "pub struct Trial { params r, l; input phi; unknowns psi, x; loop o: r @ phi == (x, 0) + l @ (psi + x / l); }",
         "pub struct Trial { params r, l, t; input phi; unknowns psi, x; loop o: r @ phi == (x * x) @ t + l @ psi; }",
     ];
     for src in cases {
