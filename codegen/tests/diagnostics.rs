@@ -658,3 +658,23 @@ fn an_angle_as_a_coordinate_in_a_loop_is_a_unit_mix() {
         assert_eq!(errors(&format!("pub struct S {{ {body} }}")), Vec::<String>::new(), "{body}");
     }
 }
+
+/// Notations of formulas and of other languages, each told what to write instead: a number
+/// without its leading `0`, the Greek letter for `pi`, `gravity` given with `=`.
+#[test]
+fn other_notations_are_told_what_to_write() {
+    let slider = |tail: &str| format!("pub struct S {{ params r, l, g; input phi; unknowns psi, x; {tail} }}");
+    for (tail, says) in [
+        ("loop c: r @ phi == (x, 0) + .5 * l @ psi;", "a number starts with a digit: write `0.5`"),
+        ("loop c: r @ phi == (x, 0) + l @ (psi + π);", "`π` is not a name of the language: write `pi` for 3.14159..."),
+        (
+            "loop c: r @ phi == (x, 0) + l @ psi; gravity = (0, -g);",
+            "`gravity` takes its vector without `=`: write `gravity (0, -g);`",
+        ),
+    ] {
+        let e = errors(&slider(tail));
+        assert_eq!(e, [says], "{tail}");
+    }
+    // A component after a value is not a number: `v.x` still reads.
+    assert_eq!(errors(&slider("loop c: r @ phi == (x, 0) + l @ psi; output w = (x, 0).x;")), Vec::<String>::new());
+}

@@ -288,6 +288,18 @@ fn vector_in_other_brackets(input: ParseStream) -> Option<syn::Error> {
     Some(input.error(format!("a vector is written in parentheses: write `({inside})`, not `{open}{inside}{close}`")))
 }
 
+/// The error for a number written without its leading `0` (`.5`, which Rust reads as a `.` and
+/// the number `5`), saying to write `0.5`. `None` for anything else.
+fn number_without_leading_digit(input: ParseStream) -> Option<syn::Error> {
+    let (dot, rest) = input.cursor().punct()?;
+    let (lit, _) = rest.literal()?;
+    if dot.as_char() != '.' || dot.spacing() != proc_macro2::Spacing::Alone {
+        return None;
+    }
+    let range = SpanRange { start: dot.span(), end: lit.span() };
+    Some(range.error(format!("a number starts with a digit: write `0.{lit}`")))
+}
+
 /// Parses one expression, stopping before `==`, `;`, `,` or the end of the input.
 pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
     Parser { depth: 0 }.expr(input, 0)
@@ -580,6 +592,9 @@ impl Parser {
         }
         if input.is_empty() {
             return Err(input.error(format!("expected a value: {VALUE}")));
+        }
+        if let Some(e) = number_without_leading_digit(input) {
+            return Err(e);
         }
         // The operator or token where a value was expected (a joint operator such as `==` whole).
         let mut found = String::new();

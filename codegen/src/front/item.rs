@@ -87,6 +87,11 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
         parse_torque(input)?
     } else if look.peek(kw::gravity) {
         input.parse::<kw::gravity>()?;
+        if input.peek(Token![=]) && !input.peek(Token![==]) {
+            // `gravity = (0, -g);`: the item gives its vector as `force` and `torque` give
+            // theirs, but has no name to give it to.
+            return Err(input.error("`gravity` takes its vector without `=`: write `gravity (0, -g);`"));
+        }
         let value = parse_expr(input)?;
         if input.peek(Token![,]) {
             // `gravity 0, -g;`: the components without the parentheses of a vector.

@@ -228,6 +228,12 @@ impl Lowerer {
             ));
             return;
         }
+        // The Greek letter, as a formula writes it: `pi` is the language's name for it.
+        if key == "π" {
+            self.errors
+                .push(syn::Error::new(id.span(), "`π` is not a name of the language: write `pi` for 3.14159..."));
+            return;
+        }
         // The built-in `pi` for its spellings in other cases (`PI` as in Rust's `f64::consts`),
         // and for no other name: it would be "close" to every two-letter name.
         let pi = key.eq_ignore_ascii_case("pi").then(|| "pi".to_string());
