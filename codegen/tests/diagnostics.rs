@@ -678,3 +678,38 @@ fn other_notations_are_told_what_to_write() {
     // A component after a value is not a number: `v.x` still reads.
     assert_eq!(errors(&slider("loop c: r @ phi == (x, 0) + l @ psi; output w = (x, 0).x;")), Vec::<String>::new());
 }
+
+/// A Rust keyword where a name belongs is named as one, with a name to write instead; the
+/// message said "expected a name" of a word that reads as one.
+#[test]
+fn a_keyword_as_a_name_is_told_to_change_or_go_raw() {
+    for (decl, says) in [
+        (
+            "params r, l, in; input phi; unknowns psi, x;",
+            "`in` is a Rust keyword and cannot name a parameter: choose another name, such as `in_`, or write the raw identifier `r#in`",
+        ),
+        (
+            "params r, l; input self; unknowns psi, x;",
+            "`self` is a Rust keyword and cannot name an input: choose another name, such as `self_`",
+        ),
+        (
+            "params r, l; input phi; unknowns psi, x, type;",
+            "`type` is a Rust keyword and cannot name an unknown: choose another name, such as `type_`, or write the raw identifier `r#type`",
+        ),
+        (
+            "params r, l; input phi; unknowns psi, x; output match = x;",
+            "`match` is a Rust keyword and cannot name an `output`: choose another name, such as `match_`, or write the raw identifier `r#match`",
+        ),
+        (
+            "params r, l; input phi; unknowns psi, x; let mut v = x;",
+            "remove `mut`: a `let` names one value, which is never reassigned",
+        ),
+        (
+            "params r, l; input phi; unknowns psi, x; eq as: x == 1;",
+            "`as` is a Rust keyword and cannot name an `eq`: choose another name, such as `as_`, or write the raw identifier `r#as`",
+        ),
+    ] {
+        let e = errors(&format!("pub struct S {{ {decl} loop c: r @ phi == (x, 0) + l @ psi; }}"));
+        assert!(e.iter().any(|m| m == says), "{decl}: {e:#?}");
+    }
+}

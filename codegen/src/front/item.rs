@@ -354,6 +354,14 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
         if let Ok(word) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
             *name = Some(Ident::new(&format!("__kinloop_keyword_{word}"), word.span()));
         }
+        let what = match kind {
+            DeclKind::Params => "a parameter",
+            DeclKind::Inputs => "an input",
+            DeclKind::Unknowns => "an unknown",
+        };
+        if let Some(e) = keyword_as_name(input, what) {
+            return Err(e);
+        }
         return Err(input.error(match kind {
             DeclKind::Params => "expected a parameter name: `params a, b = 2.5;`",
             DeclKind::Inputs => "expected an input name: `input phi;` or `inputs th1, th2;`",
@@ -447,6 +455,33 @@ fn second_equals(input: ParseStream) -> syn::Error {
     }
 }
 
+/// "a `loop`", "an `eq`": the item called `what`, for messages.
+fn item_article(what: &str) -> String {
+    let article = if what.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+    format!("{article} `{what}`")
+}
+
+/// The error for a Rust keyword where a name belongs (`params in;`, `output type = ..;`),
+/// saying what to write instead; `None` where no keyword stands.
+fn keyword_as_name(input: ParseStream, what: &str) -> Option<syn::Error> {
+    if input.peek(Ident) {
+        return None;
+    }
+    let word = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any).ok()?.to_string();
+    if word == "mut" {
+        return Some(input.error(format!("remove `mut`: {what} names one value, which is never reassigned")));
+    }
+    // These four are keywords even as raw identifiers.
+    let raw = if matches!(word.as_str(), "self" | "Self" | "super" | "crate") {
+        String::new()
+    } else {
+        format!(", or write the raw identifier `r#{word}`")
+    };
+    Some(input.error(format!(
+        "`{word}` is a Rust keyword and cannot name {what}: choose another name, such as `{word}_`{raw}"
+    )))
+}
+
 /// Skips to the next top-level `,` or `;` of a list, leaving it (error recovery within a list).
 fn skip_to_separator(input: ParseStream) {
     let _ = input.step(|cursor| {
@@ -494,6 +529,9 @@ fn named_value(input: ParseStream, what: &str, errors: &mut Errors) -> syn::Resu
 }
 
 fn parse_binding(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr)> {
+    if let Some(e) = keyword_as_name(input, &item_article(what)) {
+        return Err(e);
+    }
     if !input.peek(Ident) {
         return Err(input.error(format!("expected a name: `{what} name = expression;`")));
     }
@@ -514,6 +552,9 @@ fn parse_binding(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr)> {
 }
 
 fn parse_equation(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr, Expr, Span)> {
+    if let Some(e) = keyword_as_name(input, &item_article(what)) {
+        return Err(e);
+    }
     if !input.peek(Ident) {
         return Err(input.error(format!(
             "expected the equation's name: `{what} name: lhs == rhs;` (names appear in error messages)"
