@@ -255,32 +255,57 @@ pub fn tokens(name: &str, text: &str) -> Result<TokenStream, Diagnostics> {
 /// the same name with a base letter and a combining mark (`e` U+0065, U+0301) are one name in
 /// a compiled declaration, so they are one name in a text read at run time too. proc-macro2's
 /// lexer, outside a compiler, keeps identifiers as written.
+///
+/// Without recursion: the groups being rebuilt are frames of a stack of its own, so brackets
+/// nested as deep as the text allows (the front end refuses more than its limit afterwards,
+/// with its message) cannot overflow the reader's stack, as one call per bracket did.
 fn nfc_identifiers(tokens: TokenStream) -> TokenStream {
-    use proc_macro2::{Group, Ident, TokenTree};
-    use unicode_normalization::{UnicodeNormalization, is_nfc};
-    tokens
-        .into_iter()
-        .map(|tree| match tree {
-            TokenTree::Ident(ident) => {
-                let written = ident.to_string();
-                if is_nfc(&written) {
-                    return TokenTree::Ident(ident);
+    use proc_macro2::{Group, TokenTree, token_stream::IntoIter};
+    /// A group being rebuilt: the group (`None` for the whole text), its tokens still to
+    /// read, and those read.
+    struct Frame {
+        group: Option<Group>,
+        rest: IntoIter,
+        done: Vec<TokenTree>,
+    }
+    let mut stack = vec![Frame { group: None, rest: tokens.into_iter(), done: Vec::new() }];
+    loop {
+        let top = stack.last_mut().expect("the whole text's frame is popped last");
+        match top.rest.next() {
+            Some(TokenTree::Group(group)) => {
+                stack.push(Frame { rest: group.stream().into_iter(), group: Some(group), done: Vec::new() })
+            }
+            Some(TokenTree::Ident(ident)) => top.done.push(TokenTree::Ident(nfc_identifier(ident))),
+            Some(other) => top.done.push(other),
+            None => {
+                let Frame { group, done, .. } = stack.pop().expect("a frame");
+                let stream: TokenStream = done.into_iter().collect();
+                match (group, stack.last_mut()) {
+                    (Some(group), Some(parent)) => {
+                        let mut normal = Group::new(group.delimiter(), stream);
+                        normal.set_span(group.span());
+                        parent.done.push(TokenTree::Group(normal));
+                    }
+                    _ => return stream,
                 }
-                // The normal form of an identifier is an identifier (XID is closed under NFC).
-                let normal = match written.strip_prefix("r#") {
-                    Some(raw) => Ident::new_raw(&raw.nfc().collect::<String>(), ident.span()),
-                    None => Ident::new(&written.nfc().collect::<String>(), ident.span()),
-                };
-                TokenTree::Ident(normal)
             }
-            TokenTree::Group(group) => {
-                let mut normal = Group::new(group.delimiter(), nfc_identifiers(group.stream()));
-                normal.set_span(group.span());
-                TokenTree::Group(normal)
-            }
-            other => other,
-        })
-        .collect()
+        }
+    }
+}
+
+/// `ident` in Unicode Normalization Form C, at its span (see [`nfc_identifiers`]).
+fn nfc_identifier(ident: proc_macro2::Ident) -> proc_macro2::Ident {
+    use proc_macro2::Ident;
+    use unicode_normalization::{UnicodeNormalization, is_nfc};
+    let written = ident.to_string();
+    if is_nfc(&written) {
+        return ident;
+    }
+    // The normal form of an identifier is an identifier (XID is closed under NFC).
+    match written.strip_prefix("r#") {
+        Some(raw) => Ident::new_raw(&raw.nfc().collect::<String>(), ident.span()),
+        None => Ident::new(&written.nfc().collect::<String>(), ident.span()),
+    }
 }
 
 /// Rust's white space (`Pattern_White_Space`): the only characters between tokens the compiler
