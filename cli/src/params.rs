@@ -13,6 +13,14 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
             return Err(Failed(exit::USAGE));
         };
         let (name, value) = (name.trim(), value.trim());
+        // Said as what it is: the model's answer, "no parameter ``", named no option.
+        if name.is_empty() {
+            return Err(exit::usage(format!(
+                "`{item}` in --params has no name before `=`: write name=value (the parameters of {}: {})",
+                model.name(),
+                model.params().join(", ")
+            )));
+        }
         // Twice is a mistake in one of the two (a copied item not renamed): neither wins.
         if given.contains(&name) {
             eprintln!("error: `{name}` is given twice in --params");

@@ -1,0 +1,493 @@
+//! Every command's options given what they do not take: numbers out of range (0, negative,
+//! 1e30, beyond `f64`, below its subnormals, NaN, infinities, text), ranges backwards or empty,
+//! names of nothing, parameters misspelt or not finite, files missing or directories, outputs
+//! that cannot be created. Each run ends (a time limit only a hang reaches) with one of the
+//! documented exit codes, never a panic (101) or a signal; a failure says why on standard
+//! error, naming the option or the value given; a success writes no NaN or infinity.
+
+mod common;
+
+use common::shipped;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// What an option takes, and so which wrong values it is given.
+#[derive(Clone, Copy, Debug)]
+enum Takes {
+    /// A number (`--speed`, `--roller`).
+    Number,
+    /// A count (`--samples`, `--starts`).
+    Count,
+    /// Numbers separated by commas (`--from`, `--at`, `--guide`).
+    List,
+    /// A name of the declaration (`--point`, `--columns`).
+    Name,
+    /// `name=value,...` (`--params`).
+    Params,
+    /// `name=lo..hi,...` (`--vary`) or `lo..hi` (`--range`).
+    Ranges,
+    /// A file read (the declaration, `--targets`).
+    Input,
+    /// A file written (`--events`, `--out`).
+    Output,
+}
+
+/// Wrong numbers: zeros, negatives, beyond and below `f64`'s range, not numbers.
+const NUMBERS: &[&str] = &["0", "-1", "1e30", "-1e308", "1e309", "1e-320", "1e-400", "NaN", "-inf", "", "abc", "1,2"];
+
+/// Wrong counts: none, negative, fractional, written as floats, beyond the limits and any
+/// integer type.
+const COUNTS: &[&str] =
+    &["0", "1", "-1", "1.5", "1e30", "NaN", "", "10000001", "18446744073709551615", "18446744073709551616"];
+
+/// Wrong lists of numbers: empty, too many, not finite, not numbers, separated otherwise.
+const LISTS: &[&str] = &[
+    "", ",", "1,2,3", "nan", "inf", "-inf", "1e309", "1e-400", "a", "0;1", "1e308", "-1e308", "0,nan", "1e300", "1,,2",
+];
+
+/// Names of nothing, of what is not a point, and not names.
+const NAMES: &[&str] = &["", "nope", "phi", "p.x", "😀", "a,a", "kind"];
+
+/// Wrong parameter lists, `P` standing for a parameter of the declaration.
+const PARAMS: &[&str] =
+    &["P=", "=1", "P", "P=nan", "P=inf", "P=1e-400", "zz=1", "P=1,P=2", "P=0", "P=-1", "P=1e308", ",,,", "P=1=2"];
+
+/// Wrong ranges.
+const RANGES: &[&str] = &[
+    "",
+    "a=1..0",
+    "a=1..1",
+    "a=0..1e309",
+    "a=nan..1",
+    "a=..1",
+    "a=1",
+    "zz=0..1",
+    "a=-inf..inf",
+    "1..0",
+    "0..0",
+    "nan..1",
+    "0..1e309",
+    "a=0.8..1.4,a=2..3",
+    "c=0..1e308",
+];
+
+/// One command line, and the options of it that are replaced by wrong values.
+struct Base {
+    args: Vec<String>,
+    options: Vec<(&'static str, Takes)>,
+}
+
+fn base(args: &[&str], options: &[(&'static str, Takes)]) -> Base {
+    Base { args: args.iter().map(|s| s.to_string()).collect(), options: options.to_vec() }
+}
+
+/// The files the runs read and write, in a directory of their own.
+struct Scratch {
+    dir: PathBuf,
+}
+
+impl Scratch {
+    fn new() -> Scratch {
+        let dir = std::env::temp_dir().join(format!("kinloop-bad-arguments-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a scratch directory");
+        // Targets on the coupler curve of `a = 1.1, b = 2.8` (the README's).
+        let targets = "0.9661,1.4940\n1.2330,2.2071\n0.6814,2.4363\n-0.0985,2.1152\n-0.6145,1.4192\n-0.6820,0.7191\n";
+        std::fs::write(dir.join("points.csv"), targets).expect("targets");
+        std::fs::write(dir.join("not_utf8.kl"), b"pub struct X { params a = 1\xff; }").expect("a binary file");
+        std::fs::write(dir.join("empty.kl"), "").expect("an empty file");
+        std::fs::create_dir_all(dir.join("a_directory.kl")).expect("a directory");
+        Scratch { dir }
+    }
+
+    fn path(&self, name: &str) -> String {
+        self.dir.join(name).display().to_string()
+    }
+
+    /// Files that cannot be read as a declaration or targets.
+    fn inputs(&self) -> Vec<String> {
+        vec![
+            self.path("missing.kl"),
+            self.path("a_directory.kl"),
+            self.path("not_utf8.kl"),
+            self.path("empty.kl"),
+            "/dev/null".to_string(),
+            "/dev/zero".to_string(),
+            String::new(),
+        ]
+    }
+
+    /// Files that cannot be written: a directory, in a directory that does not exist, where
+    /// nothing may be created, a device full, the declaration itself, nothing.
+    fn outputs(&self, declaration: &str) -> Vec<String> {
+        vec![
+            self.path("a_directory.kl"),
+            self.path("no/such/dir/out.svg"),
+            "/proc/kinloop-cannot-be-here.svg".to_string(),
+            "/dev/full".to_string(),
+            declaration.to_string(),
+            String::new(),
+            self.path("out.unknown"),
+        ]
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+/// The commands, each with a command line that succeeds and its options to make wrong.
+fn bases(s: &Scratch) -> Vec<Base> {
+    use Takes::*;
+    let (four_bar, rhombic, slider) = (shipped("four_bar.kl"), shipped("rhombic_drive.kl"), shipped("slider_crank.kl"));
+    let (engine, cam, five_bar, coupler) =
+        (shipped("engine.kl"), shipped("dwell_cam.kl"), shipped("five_bar.kl"), shipped("coupler_four_bar.kl"));
+    let (events, out_svg, out_html, plot, flywheel) =
+        (s.path("events.csv"), s.path("anim.svg"), s.path("grid.html"), s.path("cam.svg"), s.path("flywheel.csv"));
+    let targets = s.path("points.csv");
+    let fb = "a=1,b=3,c=2.5,d=3.2";
+    vec![
+        base(&["check", &rhombic], &[("FILE", Input)]),
+        base(
+            &["solve", &four_bar, "--params", fb, "--at", "30", "--deg"],
+            &[("FILE", Input), ("--params", Params), ("--at", List)],
+        ),
+        base(
+            &[
+                "sweep",
+                &four_bar,
+                "--params",
+                fb,
+                "--from",
+                "0",
+                "--to",
+                "360",
+                "--samples",
+                "13",
+                "--deg",
+                "--events",
+                &events,
+            ],
+            &[
+                ("--from", List),
+                ("--to", List),
+                ("--samples", Count),
+                ("--events", Output),
+                ("--singular-pivot", Number),
+                ("--params", Params),
+            ],
+        ),
+        base(
+            &[
+                "trace",
+                &four_bar,
+                "--params",
+                "a=3,b=2,c=2.5,d=4",
+                "--from",
+                "0",
+                "--to",
+                "180",
+                "--deg",
+                "--ds",
+                "0.05",
+                "--max-points",
+                "200",
+            ],
+            &[("--from", List), ("--to", List), ("--ds", Number), ("--max-points", Count), ("--events", Output)],
+        ),
+        base(
+            &[
+                "extremes",
+                &slider,
+                "--params",
+                "r=1,l=3,e=0.4",
+                "--from",
+                "0",
+                "--to",
+                "360",
+                "--deg",
+                "--samples",
+                "13",
+            ],
+            &[("--from", List), ("--to", List), ("--samples", Count), ("--columns", Name), ("--params", Params)],
+        ),
+        base(
+            &["dynamics", &engine, "--speed", "150", "--delta", "0.02", "--samples", "36", "--flywheel", &flywheel],
+            &[
+                ("--speed", Number),
+                ("--start", Number),
+                ("--samples", Count),
+                ("--delta", Number),
+                ("--about", List),
+                ("--flywheel", Output),
+                ("--params", Params),
+            ],
+        ),
+        base(
+            &[
+                "simulate",
+                &engine,
+                "--speed",
+                "150",
+                "--torque",
+                "2.5",
+                "--flywheel",
+                "0.05",
+                "--time",
+                "0.02",
+                "--samples",
+                "5",
+            ],
+            &[
+                ("--speed", Number),
+                ("--start", Number),
+                ("--time", Number),
+                ("--torque", Number),
+                ("--flywheel", Number),
+                ("--samples", Count),
+                ("--max-steps", Count),
+                ("--params", Params),
+            ],
+        ),
+        base(
+            &[
+                "cam",
+                &cam,
+                "--point",
+                "follower",
+                "--guide",
+                "0,1",
+                "--roller",
+                "10",
+                "--deg",
+                "--samples",
+                "37",
+                "--plot",
+                &plot,
+            ],
+            &[
+                ("--point", Name),
+                ("--guide", List),
+                ("--rocker", List),
+                ("--pivot", List),
+                ("--roller", Number),
+                ("--flat", Number),
+                ("--face-offset", Number),
+                ("--start", Number),
+                ("--samples", Count),
+                ("--plot", Output),
+                ("--params", Params),
+            ],
+        ),
+        base(
+            &["animate", &rhombic, "--from", "0", "--to", "360", "--deg", "--samples", "13", "--out", &out_svg],
+            &[
+                ("--from", List),
+                ("--to", List),
+                ("--samples", Count),
+                ("--out", Output),
+                ("--show", Name),
+                ("--frames", Count),
+                ("--cam", Name),
+            ],
+        ),
+        base(
+            &["animate", &five_bar, "--grid", "--from", "0,0.4", "--to", "3,3", "--samples", "3,3", "--out", &out_html],
+            &[("--from", List), ("--to", List), ("--samples", List), ("--out", Output), ("--show", Name)],
+        ),
+        base(
+            &[
+                "synth",
+                &coupler,
+                "--targets",
+                &targets,
+                "--path",
+                "p",
+                "--vary",
+                "a=0.8..1.4,b=2..3.5",
+                "--starts",
+                "2",
+                "--jobs",
+                "1",
+                "--keep",
+                "2",
+            ],
+            &[
+                ("FILE", Input),
+                ("--targets", Input),
+                ("--path", Name),
+                ("--function", Name),
+                ("--vary", Ranges),
+                ("--range", Ranges),
+                ("--starts", Count),
+                ("--seed", Count),
+                ("--keep", Count),
+                ("--jobs", Count),
+                ("--max-error", Number),
+                ("--params", Params),
+            ],
+        ),
+    ]
+}
+
+/// `args` with `option`'s value replaced by `value` (added where not given); `FILE`, the
+/// declaration, is the second argument.
+fn with(args: &[String], option: &str, value: &str) -> Vec<String> {
+    let mut out = args.to_vec();
+    if option == "FILE" {
+        out[1] = value.to_string();
+    } else if let Some(k) = out.iter().position(|a| a == option) {
+        out[k + 1] = value.to_string();
+    } else {
+        out.extend([option.to_string(), value.to_string()]);
+    }
+    out
+}
+
+/// The wrong values of what an option takes.
+fn values(takes: Takes, s: &Scratch, declaration: &str, param: &str) -> Vec<String> {
+    let own = |v: &[&str]| v.iter().map(|s| s.replace('P', param)).collect();
+    match takes {
+        Takes::Number => own(NUMBERS),
+        Takes::Count => own(COUNTS),
+        Takes::List => own(LISTS),
+        Takes::Name => own(NAMES),
+        Takes::Params => own(PARAMS),
+        Takes::Ranges => own(RANGES),
+        Takes::Input => s.inputs(),
+        Takes::Output => s.outputs(declaration),
+    }
+}
+
+/// The exit codes `kinloop` documents.
+const CODES: &[i32] = &[0, 1, 2, 65, 66, 69, 73, 74];
+
+/// Runs `kinloop` with `args`, killed after `limit`: its exit code (`None` for a signal or a
+/// hang), standard output and standard error.
+fn run(args: &[String], limit: Duration) -> (Option<i32>, String, String, bool) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_kinloop"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("kinloop runs");
+    // Read on threads, so that a full pipe does not stall the child.
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            let _ = r.read_to_end(&mut v);
+            String::from_utf8_lossy(&v).into_owned()
+        })
+    };
+    let out = drain(Box::new(child.stdout.take().expect("stdout")));
+    let err = drain(Box::new(child.stderr.take().expect("stderr")));
+    let started = Instant::now();
+    let (status, hung) = loop {
+        if let Some(status) = child.try_wait().expect("wait") {
+            break (status, false);
+        }
+        if started.elapsed() > limit {
+            let _ = child.kill();
+            break (child.wait().expect("wait"), true);
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    (status.code(), out.join().unwrap_or_default(), err.join().unwrap_or_default(), hung)
+}
+
+/// What is wrong with one run's outcome, if anything.
+fn judge(option: &str, value: &str, code: Option<i32>, out: &str, err: &str, hung: bool) -> Option<String> {
+    if hung {
+        return Some("still running at the time limit: a hang".to_string());
+    }
+    let Some(code) = code else { return Some(format!("killed by a signal; stderr: {err}")) };
+    if err.contains("panicked") || !CODES.contains(&code) {
+        return Some(format!("exit code {code}: {err}"));
+    }
+    if code != 0 && err.trim().is_empty() {
+        return Some(format!("exit code {code} and nothing said"));
+    }
+    // A usage error names what was wrong: the option, the value given or a name in it, or
+    // another option it does not go with.
+    if code == 2 && option != "FILE" {
+        let given = value.trim();
+        let mut pieces = given.split([',', '=', '.']).map(str::trim).filter(|p| !p.is_empty());
+        let named = err.contains(option)
+            || (!given.is_empty() && err.contains(given))
+            || pieces.any(|p| err.contains(&format!("`{p}`")))
+            || err.contains(" --");
+        if !named {
+            return Some(format!("a usage error naming neither {option} nor `{value}`: {err}"));
+        }
+    }
+    if code == 0 {
+        let fields = out.split([',', '\n', ' ']).map(str::trim);
+        if let Some(bad) = fields.clone().find(|f| matches!(f.to_ascii_lowercase().as_str(), "nan" | "inf" | "-inf")) {
+            return Some(format!("succeeded writing `{bad}`"));
+        }
+    }
+    None
+}
+
+#[test]
+fn wrong_arguments_are_refused_in_words_never_a_panic_or_a_hang() {
+    let s = Scratch::new();
+    // Far above any run's time in debug: only a hang reaches it.
+    let limit = Duration::from_secs(60);
+    let mut failures = Vec::new();
+    let mut runs = 0;
+    for b in bases(&s) {
+        // The command line itself succeeds: the wrong values alone make its runs fail.
+        let (code, _, err, _) = run(&b.args, limit);
+        assert_eq!(code, Some(0), "{:?}: {err}", b.args);
+        let declaration = b.args[1].clone();
+        let param = first_param(&declaration);
+        for (option, takes) in &b.options {
+            for value in values(*takes, &s, &declaration, &param) {
+                let args = with(&b.args, option, &value);
+                let (code, out, err, hung) = run(&args, limit);
+                runs += 1;
+                if let Some(problem) = judge(option, &value, code, &out, &err, hung) {
+                    failures.push(format!("kinloop {}: {problem}", shown(&args)));
+                }
+            }
+        }
+    }
+    eprintln!("{runs} runs");
+    assert!(failures.is_empty(), "{} runs failed:\n{}", failures.len(), failures.join("\n"));
+}
+
+/// The first parameter the declaration `file` lists (what `P` stands for in [`PARAMS`]).
+fn first_param(file: &str) -> String {
+    let text = std::fs::read_to_string(file).expect("the declaration");
+    let after = text.split_once("params").map_or("", |(_, rest)| rest);
+    after.trim_start().split([' ', ',', '=', ';']).next().unwrap_or("a").to_string()
+}
+
+/// A command line as typed, quoted where needed.
+fn shown(args: &[String]) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).display().to_string();
+    args.iter()
+        .map(|a| a.replace(&root, "cli"))
+        .map(|a| if a.is_empty() || a.contains([' ', ',', ';']) { format!("'{a}'") } else { a })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// An item of `--params` without a name (`=1`, a name lost in editing) is refused naming the
+/// option and the item, where it was "FourBar has no parameter ``" with its list of parameters.
+#[test]
+fn a_parameter_without_a_name_is_refused_naming_params() {
+    let four_bar = shipped("four_bar.kl");
+    for list in ["=1", "a=1,b=3, = 2.5,d=3.2"] {
+        let out = common::kinloop(&["solve", &four_bar, "--at", "0", "--params", list]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{list}: {err}");
+        assert!(err.contains("in --params has no name before `=`"), "{list}: {err}");
+        assert!(!err.contains("parameter ``"), "{list}: {err}");
+    }
+}
