@@ -223,8 +223,13 @@ fn design(vary: &str) -> Result<Design, Failed> {
         let Some((name, range)) = item.split_once('=') else {
             return Err(exit::usage(format!("`{item}` in --vary is not `name=lo..hi`")));
         };
-        let (lo, hi) = bounds(range, &format!("the range of `{}` in --vary", name.trim()))?;
-        d = d.var(name.trim(), lo, hi);
+        let name = name.trim();
+        // Said here, naming the option: the library's "named twice" named none.
+        if d.variables().iter().any(|v| v.name == name) {
+            return Err(exit::usage(format!("`{name}` is given twice in --vary: give each design variable once")));
+        }
+        let (lo, hi) = bounds(range, &format!("the range of `{name}` in --vary"))?;
+        d = d.var(name, lo, hi);
     }
     if d.variables().is_empty() {
         return Err(exit::usage("--vary names no design variable"));

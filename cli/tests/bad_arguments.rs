@@ -491,3 +491,17 @@ fn a_parameter_without_a_name_is_refused_naming_params() {
         assert!(!err.contains("parameter ``"), "{list}: {err}");
     }
 }
+
+/// A design variable given twice in `--vary` is refused naming the option, where the library's
+/// "the parameter `a` is named twice" named none.
+#[test]
+fn a_design_variable_given_twice_is_refused_naming_vary() {
+    let s = Scratch::new();
+    let targets = s.path("points.csv");
+    let coupler = shipped("coupler_four_bar.kl");
+    let args = ["synth", &coupler, "--targets", &targets, "--path", "p", "--starts", "1", "--jobs", "1"];
+    let out = common::kinloop(&[&args[..], &["--vary", "a=0.8..1.4, a=2..3"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("`a` is given twice in --vary"), "{err}");
+}
