@@ -521,6 +521,28 @@ impl Command {
     }
 }
 
+/// The command line's arguments, a negative number after `--flat` joined to it
+/// (`--flat=-inf`). `--flat` takes an optional angle, so it cannot take every value that starts
+/// with `-` (it would take the next option for its angle), and clap takes only some negative
+/// numbers for one: `--flat -inf` or `--flat -1e-400` was "unexpected argument '-i'", with the
+/// advice to pass it after `--`, which makes it a file name. Joined, the angle is read as every
+/// number is, and refused by the option's own checks.
+fn arguments() -> Vec<std::ffi::OsString> {
+    let mut args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let negative = |a: &std::ffi::OsString| a.to_str().is_some_and(|v| v.starts_with('-') && v.parse::<f64>().is_ok());
+    let mut k = 0;
+    // What follows `--` is files, not options.
+    while k + 1 < args.len() && args[k] != "--" {
+        if args[k] == "--flat" && negative(&args[k + 1]) {
+            let angle = args.remove(k + 1);
+            args[k].push("=");
+            args[k].push(angle);
+        }
+        k += 1;
+    }
+    args
+}
+
 /// A failure with its exit code; the message is already written.
 pub struct Failed(pub u8);
 
@@ -528,7 +550,7 @@ fn main() -> ExitCode {
     // Found before `main`: output that would be lost is refused before anything is done.
     let closed = output::stdout_closed();
     // Not `Cli::parse`: its help and version that cannot be written would succeed.
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_from(arguments()) {
         Ok(cli) => cli,
         Err(e) => return ExitCode::from(output::parser_stop(&e, closed)),
     };

@@ -505,3 +505,17 @@ fn a_design_variable_given_twice_is_refused_naming_vary() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("`a` is given twice in --vary"), "{err}");
 }
+
+/// `--flat` takes an optional angle: a negative one that clap does not take for a number
+/// (`-inf`, `-1e-400`) is its value all the same, refused by its own check, where clap called it
+/// an unexpected argument `-i` and said to pass it after `--` (which makes it a file name).
+#[test]
+fn a_negative_flat_angle_is_the_options_value() {
+    let cam = shipped("dwell_cam.kl");
+    for (angle, says) in [("-inf", "--flat -inf"), ("-1e-400", "too small for a 64-bit float")] {
+        let out = common::kinloop(&["cam", &cam, "--point", "follower", "--guide", "0,1", "--flat", angle]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{angle}: {err}");
+        assert!(err.contains(says) && !err.contains("unexpected argument"), "{angle}: {err}");
+    }
+}
