@@ -1,6 +1,7 @@
 //! A CSV table written row by row, as its rows are made: a long sweep keeps none of them.
 //!
-//! Every CSV the command writes goes through [`CsvRows`]: a value that is zero is written `0`,
+//! Every CSV the command writes goes through [`CsvRows`] (or, for `synth`'s with its column of
+//! text, writes its numbers as it does): a value that is zero is written `0`,
 //! whatever the sign IEEE arithmetic left on it (`-r sin 0` is `-0.0`). [`Number`] writes the
 //! bits, `-0`, which read as a value below zero where the analog of a slider at its dead centre
 //! is exactly zero, and as another value than the same zero written on standard error

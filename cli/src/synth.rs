@@ -7,6 +7,7 @@
 //! given inputs) or pairs of a function (`input,output`). The ranked candidates are written as
 //! a table or as CSV, each with its defects.
 
+use crate::csv_rows::unsigned_zero;
 use crate::numbers::number;
 use crate::own_columns::{self, Own};
 use crate::{Failed, exit, params, progress};
@@ -421,15 +422,32 @@ fn header(report: &SynthesisReport, u: &Units) -> Vec<String> {
     h
 }
 
-/// One candidate's cells (values in full precision: `{:?}` reads back to the same bits; an
-/// error converted to degrees is within a rounding of the radians').
-fn cells(rank: usize, c: &Candidate, u: &Units) -> Vec<String> {
+/// One candidate's cells, each number written by `number` (in full precision: it reads back to
+/// the same bits; an error converted to degrees is within a rounding of the radians').
+fn cells(rank: usize, c: &Candidate, u: &Units, number: fn(f64) -> String) -> Vec<String> {
     let mut r = vec![rank.to_string(), c.start.to_string(), u8::from(c.is_valid()).to_string()];
-    r.extend(c.values.iter().map(|v| format!("{v:?}")));
+    r.extend(c.values.iter().map(|&v| number(v)));
     let (max, rms) = (c.max_error * u.error, c.rms_error * u.error);
-    r.extend([format!("{max:?}"), format!("{rms:?}"), c.local.evaluations.to_string()]);
+    r.extend([number(max), number(rms), c.local.evaluations.to_string()]);
     r.push(defects(c, u));
     r
+}
+
+/// A number of the table as text: in full precision, as `Debug` writes it.
+fn shown(v: f64) -> String {
+    format!("{v:?}")
+}
+
+/// A number of the CSV as every CSV of the command line writes it (`crate::csv_rows`): in full
+/// precision, a zero without a sign.
+fn csv_number(v: f64) -> String {
+    Number(unsigned_zero(v)).to_string()
+}
+
+/// A field of text in the CSV: quoted, a quote within doubled (RFC 4180), so that a comma, a
+/// quote or a line break within reads back as written.
+fn csv_text(text: &str) -> String {
+    format!("\"{}\"", text.replace('"', "\"\""))
 }
 
 /// The candidates as CSV (the defects quoted).
@@ -437,9 +455,9 @@ fn csv(report: &SynthesisReport, u: &Units) -> String {
     let mut s = header(report, u).join(",");
     s.push('\n');
     for (k, c) in report.candidates.iter().enumerate() {
-        let mut r = cells(k + 1, c, u);
+        let mut r = cells(k + 1, c, u, csv_number);
         let last = r.len() - 1;
-        r[last] = format!("\"{}\"", r[last]);
+        r[last] = csv_text(&r[last]);
         let _ = writeln!(s, "{}", r.join(","));
     }
     s
@@ -448,7 +466,7 @@ fn csv(report: &SynthesisReport, u: &Units) -> String {
 /// The candidates as a table aligned in columns.
 fn table(report: &SynthesisReport, u: &Units) -> String {
     let head = header(report, u);
-    let rows: Vec<Vec<String>> = report.candidates.iter().enumerate().map(|(k, c)| cells(k + 1, c, u)).collect();
+    let rows: Vec<Vec<String>> = report.candidates.iter().enumerate().map(|(k, c)| cells(k + 1, c, u, shown)).collect();
     let widths: Vec<usize> =
         (0..head.len()).map(|j| rows.iter().map(|r| r[j].len()).chain([head[j].len()]).max().unwrap_or(0)).collect();
     let mut s = String::new();
@@ -532,7 +550,31 @@ fn summary(r: &SynthesisReport) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::value_reach;
+    use super::{csv_number, csv_text, value_reach};
+
+    /// The CSV's numbers are written as the command line's other CSVs write them: a negative
+    /// zero as `0` (it was `-0.0`, where the sweeps' and the tables' CSVs write `0`), every
+    /// other value to the same bits (read back by Rust's parser, independent of the writer),
+    /// NaN and infinities as `Table::read_csv` reads them.
+    #[test]
+    fn the_csv_numbers_are_written_as_every_csv_of_the_command_line() {
+        assert_eq!(csv_number(-0.0), "0");
+        assert_eq!(csv_number(0.0), "0");
+        for v in [1.5, -2.25e-7, 0.1 + 0.2, f64::MAX, -f64::MIN_POSITIVE, 5e-324, f64::INFINITY, f64::NEG_INFINITY] {
+            let back: f64 = csv_number(v).parse().unwrap();
+            assert_eq!(back.to_bits(), v.to_bits(), "{v:e} written {}", csv_number(v));
+        }
+        assert!(csv_number(f64::NAN).parse::<f64>().unwrap().is_nan());
+    }
+
+    /// A field of text is quoted with any quote within doubled, as RFC 4180 reads it: a quote
+    /// in a defect's words would have ended the field early.
+    #[test]
+    fn a_csv_text_field_doubles_its_quotes() {
+        assert_eq!(csv_text(""), "\"\"");
+        assert_eq!(csv_text("order; circuit at 2.36"), "\"order; circuit at 2.36\"");
+        assert_eq!(csv_text("a \"b\", c"), "\"a \"\"b\"\", c\"");
+    }
 
     /// The reach of angles against the brute force: the best of a thousandth of a degree's
     /// grid of constants, each's largest error modulo a turn (a grid point lies within 0.0005
