@@ -35,8 +35,11 @@
 //!   value in degrees may be scaled by a number or offset by one (`2 * deg(15)`,
 //!   `deg(90) - pi / 6`): it is an angle all the same. A name of no known kind cannot be told
 //!   from a length, so a swap whose angle is an angle nowhere else compiles as written. For
-//!   the same reason a loop, which adds lengths, refuses such an angle as a coordinate of one
-//!   of its vectors, `(x, phi)`: write a length there, `(x, r * phi)`.
+//!   the same reason a loop, which adds lengths, refuses such an angle (or a value written in
+//!   degrees) as a coordinate of one of its vectors, `(x, phi)`: write a length there,
+//!   `(x, r * phi)`. So do the other positions: a `point`, a vector `let` that a loop or point
+//!   uses, the point a force acts at and a centre of mass. A force's value and gravity are no
+//!   positions, and a vector scaled by a length, `r * (phi, 0)`, has lengths for coordinates.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

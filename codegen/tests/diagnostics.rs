@@ -647,13 +647,13 @@ fn an_angle_as_a_coordinate_in_a_loop_is_a_unit_mix() {
         assert!(e[0].starts_with(&format!("`{name}` is an angle ({why}")), "{e:#?}");
         assert!(e[0].ends_with(&format!("such as `r * {name}` for the arc a radius `r` rolls")), "{e:#?}");
     }
-    // Lengths, a rolled arc, a name of no known kind, and an angle in a point or an `eq` (not a
-    // loop) stay as written.
+    // Lengths, a rolled arc, a name of no known kind, and an angle in an `eq` (not a loop) stay
+    // as written; a point is a position too (see the next test).
     for body in [
         "params r, l, e; input phi; unknowns psi, x; loop c: r @ phi == (x, e) + l @ psi;",
         "params r, l; input phi; unknowns psi, x; loop c: r @ phi + (r * phi, 0) == (x, 0) + l @ psi;",
         "params r, l; input t; unknowns psi, x; loop c: r @ psi == (x, t) + (l, 0);",
-        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; point p = (phi, psi);",
+        "params r, l; input phi; unknowns psi, x, u; loop c: r @ phi == (x, 0) + l @ psi; eq d: u == dot((phi, psi), (1, 0));",
     ] {
         assert_eq!(errors(&format!("pub struct S {{ {body} }}")), Vec::<String>::new(), "{body}");
     }
@@ -711,5 +711,75 @@ fn a_keyword_as_a_name_is_told_to_change_or_go_raw() {
     ] {
         let e = errors(&format!("pub struct S {{ {decl} loop c: r @ phi == (x, 0) + l @ psi; }}"));
         assert!(e.iter().any(|m| m == says), "{decl}: {e:#?}");
+    }
+}
+
+/// A point is a position, and so are the point a force acts at, a body's centre of mass and a
+/// vector `let` that a loop or point uses: their coordinates are lengths, as a loop's are, and
+/// an angle there compiled into outputs (and a mass model) that changed with the unit of length.
+#[test]
+fn an_angle_as_a_coordinate_of_a_point_is_a_unit_mix() {
+    let head = "params r, l, e = deg(5); input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for (body, name, place) in [
+        ("point p = (x, phi);", "phi", "a coordinate of a point, which is a position in lengths"),
+        ("point p = (x, 0) + (psi, 0);", "psi", "a coordinate of a point, which is a position in lengths"),
+        ("point p = (x, e);", "e", "a coordinate of a point, which is a position in lengths"),
+        ("point p = rot((x, (e)), psi);", "e", "a coordinate of a point, which is a position in lengths"),
+        (
+            "let v = (phi, 0); point p = (x, 0) + v;",
+            "phi",
+            "a coordinate of `v`, a vector that a loop or point takes as lengths",
+        ),
+        (
+            "let v = (0, psi); let w = 2 * v; point p = w;",
+            "psi",
+            "a coordinate of `v`, a vector that a loop or point takes as lengths",
+        ),
+        ("point p = (x, 2 * deg(3));", "2 * deg(3)", "a coordinate of a point, which is a position in lengths"),
+        (
+            "let v = (psi, 0); loop d: (x, 0) + v == r @ psi + (l, 0) + 0 * (x, 0);",
+            "psi",
+            "a coordinate of `v`, a vector that a loop or point takes as lengths",
+        ),
+        ("force f at (x, e) = (1, 0);", "e", "a coordinate of the point a force acts at, a position in lengths"),
+        ("body b: mass 1, com (e, x);", "e", "a coordinate of a centre of mass, a position in lengths"),
+        ("force f at (phi, 0) = (1, 0);", "phi", "a coordinate of the point a force acts at, a position in lengths"),
+        (
+            "point p = (x, 0); body b: mass 1, com (p.x, deg(5));",
+            "deg(5)",
+            "a coordinate of a centre of mass, a position in lengths",
+        ),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        assert!(e[0].starts_with(&format!("`{name}` is an angle (")), "{body}: {e:#?}");
+        assert!(e[0].contains(&format!("), but here it is {place}: write a length there")), "{body}: {e:#?}");
+        let arc = if name.contains(' ') { format!("({name})") } else { name.to_string() };
+        assert!(e[0].ends_with(&format!("such as `r * {arc}` for the arc a radius `r` rolls")), "{e:#?}");
+    }
+    // In a loop too, degrees written as a coordinate are an angle.
+    let e =
+        errors("pub struct S { params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, deg(5)) + l @ psi; }");
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(
+        e[0].starts_with(
+            "`deg(5)` is an angle (its value is written in degrees), but here it is a coordinate of a vector in a loop"
+        ),
+        "{e:#?}"
+    );
+    // Lengths, a rolled arc, a vector scaled by a length, a name of no known kind, a vector let
+    // that no loop or point uses, and vectors of forces or accelerations stay as written.
+    for body in [
+        "params r, l, e; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; point p = (x, e);",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; point p = (r * phi, x);",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; point p = l * (psi, 1);",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; let v = (psi, 1); point p = v * l;",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi + r * (phi, 0) == (x, 0) + l @ psi;",
+        "params r, l; input t; unknowns psi, x; loop c: r @ psi == (x, 0) + (l, 0); point p = (x, t);",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; let v = (phi, psi); output w = norm(v);",
+        "params r, l, g; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;
+         force f at (x, 0) = (psi, phi); gravity (0, -g);",
+    ] {
+        assert_eq!(errors(&format!("pub struct S {{ {body} }}")), Vec::<String>::new(), "{body}");
     }
 }

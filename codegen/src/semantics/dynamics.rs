@@ -6,7 +6,7 @@
 //! coordinate), a constant of the parameters, or a column of a declared `point` or `output`.
 //! Anything else would need its own analogs, so the message asks to declare it as a `point`.
 
-use super::lower::Lowerer;
+use super::lower::{Lowerer, Place};
 use super::scope::key;
 use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
@@ -249,8 +249,9 @@ impl Pending {
         // taken for a mechanism that names no angle), and one verdict per angle however many
         // bodies and torques name it.
         let points = self.bodies.iter().map(|b| &b.com).chain(self.forces.iter().map(|f| &f.1));
-        let unknown_coords =
-            points.flat_map(|p| [p.x, p.y]).any(|n| matches!(lw.graph.op(n), Op::Leaf(Leaf::Unknown(_))));
+        let unknown_coords = points
+            .flat_map(|p| [p.x, p.y])
+            .any(|n| matches!(lw.graph.op(n), Op::Leaf(Leaf::Unknown(_) | Leaf::Input(_))));
         let arguments = if self.angles.is_empty() && !unknown_coords {
             Vec::new()
         } else {
@@ -294,6 +295,10 @@ impl Pending {
                     _ => None,
                 });
                 let Some(leaf) = angle else { return Some([x, y]) };
+                if written_as_coordinate(lw, leaf) {
+                    // Refused where it is written as a coordinate, by [`super::polar`].
+                    return None;
+                }
                 let name = leaf_name(lw, leaf).unwrap_or_default();
                 lw.errors.push(p.range.error(format!(
                     "{what} is a point of lengths, but `{name}` is an angle: write a length for that coordinate \
@@ -304,6 +309,18 @@ impl Pending {
             // The mass model reads no input (the runtime's `Coord` has no such coordinate): a
             // point that moves with one is declared, and read as the output it then is.
             let input = [p.x, p.y].into_iter().find_map(|n| input_name(lw, n));
+            let angle_input = [p.x, p.y].into_iter().find_map(|n| match lw.graph.op(n) {
+                Op::Leaf(leaf @ Leaf::Input(_)) => Some(leaf),
+                _ => None,
+            });
+            if let Some(leaf) = angle_input
+                && written_as_coordinate(lw, leaf)
+                && *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals))
+            {
+                // An angle input as a coordinate: refused there, with a length to write, by
+                // [`super::polar`]; declaring the point would not mend it.
+                return None;
+            }
             let why = input.map(|i| format!(", and `{i}` is an input")).unwrap_or_default();
             lw.errors.push(p.range.error(format!(
                 "{what} must be a declared point, or `(x, y)` of unknowns, outputs and constants{why}: \
@@ -354,8 +371,8 @@ fn parameter_value(lw: &mut Lowerer, e: &Expr, what: &str) -> Option<NodeId> {
     }
 }
 
-fn point(lw: &mut Lowerer, e: &Expr, what: &str) -> Option<PendingPoint> {
-    match lw.lower(e)? {
+fn point(lw: &mut Lowerer, e: &Expr, what: &'static str) -> Option<PendingPoint> {
+    match lw.lower_in(Place::Dynamics(what), |lw| lw.lower(e))? {
         Val::V(x, y) => Some(PendingPoint { x, y, range: e.range(), shown: e.show() }),
         Val::S(_) => {
             lw.errors.push(e.range().error(format!(
@@ -394,6 +411,18 @@ fn swapped_hint(lw: &Lowerer, leaf: Leaf) -> String {
         ),
         None => String::new(),
     }
+}
+
+/// Whether [`super::polar`] refuses `leaf` where it is written bare as a coordinate, if it is
+/// an angle: in a loop or a point (a declared point named here), or, for an input, at this
+/// position too. An angle unknown written at this position is refused here instead.
+fn written_as_coordinate(lw: &Lowerer, leaf: Leaf) -> bool {
+    let checked = |place: &Place| match place {
+        Place::Loop | Place::Point => true,
+        Place::Dynamics(_) => matches!(leaf, Leaf::Input(_)),
+        Place::Let(_) => false,
+    };
+    lw.named_coordinates.iter().any(|c| c.leaf == Some(leaf) && checked(&c.place))
 }
 
 /// The name of the input `n` is, if it is one.

@@ -32,11 +32,16 @@ pub struct Lowerer {
     /// The polar terms whose length is a bare name, for the check that it is not an angle
     /// (`th @ s` for `s @ th`), made once the whole mechanism is lowered ([`super::polar`]).
     pub(super) named_lengths: Vec<NamedLength>,
-    /// Set while a `loop` is lowered: the coordinates of its Cartesian vectors are lengths.
-    pub(super) in_loop: bool,
-    /// The coordinates of Cartesian vectors in loops that are a bare name, for the check that
-    /// the name is not an angle (`(x, phi)`), made with the polar terms' ([`super::polar`]).
+    /// Set while an item whose vectors are positions is lowered (a `loop`, a `point`, a vector
+    /// `let`, a force's point, a centre of mass): the coordinates of its Cartesian vectors are
+    /// lengths.
+    pub(super) lengths: Option<Place>,
+    /// The coordinates of Cartesian vectors in such items that are a bare name, for the check
+    /// that the name is not an angle (`(x, phi)`), made with the polar terms' ([`super::polar`]).
     pub(super) named_coordinates: Vec<NamedCoordinate>,
+    /// The `let`s named while such an item is lowered, with the item: a vector `let` is a
+    /// position only where a loop or point (or such a `let`) uses it.
+    pub(super) let_uses: Vec<(Place, String)>,
     /// The `let`, `point` or `output` whose value is being lowered: a use of its own name
     /// there is a definition in terms of itself, not a definition further down.
     pub(super) defining: Option<String>,
@@ -76,28 +81,61 @@ impl NamedLength {
     }
 }
 
-/// A coordinate of a Cartesian vector in a `loop` that is a bare name of a parameter, input or
-/// unknown, noted while it is lowered for the check that the name is not an angle
-/// ([`super::polar`]).
+/// An item whose Cartesian vectors have lengths for coordinates.
+#[derive(Clone)]
+pub(super) enum Place {
+    /// A `loop`, which adds lengths.
+    Loop,
+    /// A `point`, a position.
+    Point,
+    /// The `let` of this name: a position if a loop, a point or such a `let` uses it.
+    Let(String),
+    /// A position of the dynamics, described so (`the point a force acts at`).
+    Dynamics(&'static str),
+}
+
+impl Place {
+    /// What a coordinate here is, for the message: "a coordinate of ...".
+    pub(super) fn describe(&self) -> String {
+        match self {
+            Place::Loop => "a vector in a loop, which adds lengths".to_string(),
+            Place::Point => "a point, which is a position in lengths".to_string(),
+            Place::Let(name) => format!("`{name}`, a vector that a loop or point takes as lengths"),
+            Place::Dynamics(what) => format!("{what}, a position in lengths"),
+        }
+    }
+}
+
+/// A coordinate of a Cartesian vector in a `loop`, `point`, `let`, or a position of the
+/// dynamics that is a bare name of a parameter, input or unknown, noted while it is lowered for
+/// the check that the name is not an angle ([`super::polar`]).
 pub(super) struct NamedCoordinate {
-    /// The name's leaf.
-    pub(super) leaf: Leaf,
+    /// The name's leaf; `None` for a value written in degrees there (`(x, deg(5))`).
+    pub(super) leaf: Option<Leaf>,
+    /// The item the vector is written in.
+    pub(super) place: Place,
     /// The coordinate as written.
     pub(super) range: SpanRange,
     /// The name as written.
     pub(super) name: String,
+    /// The name as a factor of a product, parenthesised where it is an operation.
+    pub(super) factor: String,
 }
 
 impl NamedCoordinate {
     /// The coordinate `e` (lowered to `n`), if it is a bare name of a parameter, input or
-    /// unknown.
-    fn of(g: &Graph, e: &Expr, n: NodeId) -> Option<Self> {
+    /// unknown, or a value written in degrees.
+    fn of(g: &Graph, place: &Place, e: &Expr, n: NodeId) -> Option<Self> {
+        let (place, range) = (place.clone(), e.range());
+        if bare(e).written_in_degrees() {
+            return Some(NamedCoordinate { leaf: None, place, range, name: bare(e).show(), factor: operand(e) });
+        }
         let Expr::Var(name) = bare(e) else { return None };
         let leaf = match g.op(n) {
             Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))) => l,
             _ => return None,
         };
-        Some(NamedCoordinate { leaf, range: e.range(), name: name.to_string() })
+        Some(NamedCoordinate { leaf: Some(leaf), place, range, name: name.to_string(), factor: name.to_string() })
     }
 }
 
@@ -171,11 +209,20 @@ impl Lowerer {
             labels: Default::default(),
             in_guess: false,
             named_lengths: Vec::new(),
-            in_loop: false,
+            lengths: None,
             named_coordinates: Vec::new(),
+            let_uses: Vec::new(),
             defining: None,
             later_uses: Default::default(),
         }
+    }
+
+    /// `f` run with the coordinates of Cartesian vectors taken as lengths of `place`.
+    pub(super) fn lower_in<T>(&mut self, place: Place, f: impl FnOnce(&mut Self) -> T) -> T {
+        let outer = self.lengths.replace(place);
+        let v = f(self);
+        self.lengths = outer;
+        v
     }
 
     /// A constant scalar (a parameter's default value).
@@ -264,9 +311,9 @@ impl Lowerer {
             Expr::Tuple { x, y, .. } => {
                 let xs = self.lower_component(x);
                 let ys = self.lower_component(y);
-                if self.in_loop {
+                if let Some(place) = &self.lengths {
                     for (e, n) in [(x, xs), (y, ys)] {
-                        let noted = n.and_then(|n| NamedCoordinate::of(&self.graph, e, n));
+                        let noted = n.and_then(|n| NamedCoordinate::of(&self.graph, place, e, n));
                         self.named_coordinates.extend(noted);
                     }
                 }
@@ -274,9 +321,12 @@ impl Lowerer {
             }
             Expr::Field { base, component, name } => return self.field(base, *component, name),
             Expr::Binary { op, op_span, lhs, rhs } => {
+                let before = [self.named_coordinates.len(), self.let_uses.len()];
                 let l = self.lower(lhs);
+                let between = [self.named_coordinates.len(), self.let_uses.len()];
                 let r = self.lower(rhs);
                 let (l, r) = (l?, r?);
+                self.unnote_scaled(*op, (l, r), (before, between));
                 if *op == BinOp::Div && self.is_constant_zero(r) {
                     let divisor = if rhs.is_literal_zero() {
                         String::new()
@@ -294,6 +344,26 @@ impl Lowerer {
             }
             Expr::Call { func, args, close } => return self.call(func, args, *close),
         })
+    }
+
+    /// A vector times or over a scalar that is not a constant (`l * (phi, 0)`) has coordinates
+    /// of that scalar's kind, a length times an angle as `(l * phi, 0)` is: the coordinates and
+    /// the `let`s noted in the vector (from `before` to `between` on the left, from `between`
+    /// on the right, counted in both lists) are no longer bare coordinates there.
+    fn unnote_scaled(&mut self, op: BinOp, (l, r): (Val, Val), (before, between): ([usize; 2], [usize; 2])) {
+        let varies = |g: &Graph, v: Val| matches!(v, Val::S(n) if g.as_const(n).is_none());
+        if !matches!(op, BinOp::Mul | BinOp::Div) {
+            return;
+        }
+        let [c, u] = if matches!(l, Val::V(..)) && varies(&self.graph, r) {
+            [before[0]..between[0], before[1]..between[1]]
+        } else if matches!(r, Val::V(..)) && varies(&self.graph, l) {
+            [between[0]..self.named_coordinates.len(), between[1]..self.let_uses.len()]
+        } else {
+            return;
+        };
+        self.named_coordinates.drain(c);
+        self.let_uses.drain(u);
     }
 
     /// Whether `v` is the scalar constant zero.

@@ -3,7 +3,7 @@
 
 use super::drawing::DrawingModel;
 use super::dynamics::{DynamicsModel, Pending};
-use super::lower::Lowerer;
+use super::lower::{Lowerer, Place};
 use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options};
@@ -349,26 +349,29 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
             }
         }
         ItemKind::Decls(..) => {}
-        ItemKind::Let { name, value } => match lw.lower_definition(name, value) {
-            Some(v) => {
-                let plain = name.unraw().to_string();
-                match v {
-                    Val::S(n) => out.lets.push((n, plain)),
-                    Val::V(x, y) => out.lets.extend([(x, format!("{plain}_x")), (y, format!("{plain}_y"))]),
+        ItemKind::Let { name, value } => {
+            match lw.lower_in(Place::Let(super::scope::key(name)), |lw| lw.lower_definition(name, value)) {
+                Some(v) => {
+                    let plain = name.unraw().to_string();
+                    match v {
+                        Val::S(n) => out.lets.push((n, plain)),
+                        Val::V(x, y) => out.lets.extend([(x, format!("{plain}_x")), (y, format!("{plain}_y"))]),
+                    }
+                    lw.define(name, v)
                 }
-                lw.define(name, v)
+                None => lw.poison(name),
             }
-            None => lw.poison(name),
-        },
+        }
         ItemKind::Point { name, value } => lower_point(lw, item, name, value, out),
         ItemKind::Output { name, value } => lower_output(lw, item, name, value, out),
         ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
             lw.in_equation = true;
-            lw.in_loop = matches!(item.kind, ItemKind::Loop { .. });
             lw.written_here.clear();
+            let place = matches!(item.kind, ItemKind::Loop { .. }).then_some(Place::Loop);
+            lw.lengths = place;
             lower_equation_item(lw, item, name, (lhs, rhs, *eq), out);
             lw.in_equation = false;
-            lw.in_loop = false;
+            lw.lengths = None;
         }
         ItemKind::Body(b) => out.dynamics.body(lw, b),
         ItemKind::Force { name, at, value } => out.dynamics.force(lw, name, at, value),
@@ -378,7 +381,7 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
 }
 
 fn lower_point(lw: &mut Lowerer, item: &Item, name: &Ident, value: &Expr, out: &mut Lowered) {
-    match lw.lower_definition(name, value) {
+    match lw.lower_in(Place::Point, |lw| lw.lower_definition(name, value)) {
         Some(Val::V(x, y)) => {
             lw.define(name, Val::V(x, y));
             out.points.push(Point { docs: item.docs.clone(), name: name.clone(), x, y });

@@ -3,8 +3,10 @@
 //! `s`, a mechanism that solves to wrong angles, or not at all, and whose results change with
 //! the unit of length; it is refused at the term, with the swap to write.
 //!
-//! A coordinate of a loop's Cartesian vector that is a bare name of an angle (`(x, phi)`) is
-//! refused too: a loop adds lengths.
+//! A coordinate of a Cartesian vector that is a bare name of an angle (`(x, phi)`) is refused
+//! too where the vector is a position: in a loop, which adds lengths, a point, the point a
+//! force acts at, a centre of mass, and a vector `let` that one of these uses. A vector scaled
+//! by a quantity that varies (`l * (phi, 0)`) has coordinates of its kind, and is not judged.
 //!
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
@@ -12,10 +14,10 @@
 //! (`(r * phi) @ 0`), a constant, or a name of no known kind stays the length it is written as.
 
 use super::dynamics::is_angle;
-use super::lower::Lowerer;
+use super::lower::{Lowerer, Place};
 use crate::graph::dag::{Leaf, NodeId};
 use crate::graph::multiples;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Reports every polar term noted in `lw` whose length is an angle, and every coordinate of a
 /// loop's Cartesian vector that is one. `residuals` and `columns` are the mechanism's equations
@@ -45,17 +47,53 @@ pub(super) fn check(lw: &mut Lowerer, residuals: &[NodeId], columns: &[NodeId], 
             "`{length}` is an angle ({why}), but here it is the length of `@`, which takes `length @ angle`: {fix}"
         )));
     }
-    // A loop adds lengths: an angle as a coordinate of one of its vectors (`(x, phi)`) makes a
-    // mechanism whose results change with the unit of length.
+    // A loop adds lengths, and a point is a position: an angle as a coordinate of one of their
+    // vectors (`(x, phi)`) makes a mechanism whose results change with the unit of length.
+    let positions = lets_taken_as_lengths(&std::mem::take(&mut lw.let_uses));
     for c in coordinates {
+        if let Place::Let(l) = &c.place
+            && !positions.contains(l)
+        {
+            continue;
+        }
+        if let (Place::Dynamics(_), Some(Leaf::Unknown(_))) = (&c.place, c.leaf) {
+            // An angle unknown at a body's or a force's point: refused by the dynamics' check.
+            continue;
+        }
         let name = &c.name;
-        let known = *angles.entry(c.leaf).or_insert_with(|| is_angle(&lw.graph, c.leaf, &arguments, residuals));
-        let Some(why) = why_an_angle(degrees.contains(&c.leaf), known, name) else { continue };
+        let why = match c.leaf {
+            Some(leaf) => {
+                let known = *angles.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
+                why_an_angle(degrees.contains(&leaf), known, name)
+            }
+            // Written in degrees there: `(x, deg(5))`.
+            None => why_an_angle(true, false, name),
+        };
+        let Some(why) = why else { continue };
         lw.errors.push(c.range.error(format!(
-            "`{name}` is an angle ({why}), but here it is a coordinate of a vector in a loop, which adds \
-             lengths: write a length there, such as `r * {name}` for the arc a radius `r` rolls"
+            "`{name}` is an angle ({why}), but here it is a coordinate of {}: write a length there, such as \
+             `r * {}` for the arc a radius `r` rolls",
+            c.place.describe(),
+            c.factor
         )));
     }
+}
+
+/// The `let`s that a loop, a point or a position of the dynamics uses, directly or through
+/// other such `let`s (`uses`: each `let` named, with the item that names it): their vectors
+/// are positions too.
+fn lets_taken_as_lengths(uses: &[(Place, String)]) -> HashSet<String> {
+    let mut found: HashSet<String> =
+        uses.iter().filter(|(p, _)| !matches!(p, Place::Let(_))).map(|(_, l)| l.clone()).collect();
+    // A `let` uses only those above it: one pass from the bottom up reaches them all.
+    for (place, used) in uses.iter().rev() {
+        if let Place::Let(user) = place
+            && found.contains(user)
+        {
+            found.insert(used.clone());
+        }
+    }
+    found
 }
 
 /// Why the name `name` is an angle: its value is in `degrees`, or it is `known` as one from the

@@ -178,7 +178,12 @@ impl Lowerer {
                 }
                 Some(Val::S(g.leaf(Leaf::Unknown(*i))))
             }
-            Some((Symbol::Let(v), _)) => Some(*v),
+            Some((Symbol::Let(v), _)) => {
+                if let Some(place) = &self.lengths {
+                    self.let_uses.push((place.clone(), key));
+                }
+                Some(*v)
+            }
             Some((Symbol::Poisoned, _)) => None,
             Some((Symbol::Later(what), span)) => {
                 let e = self.used_before_definition(id, what, *span);
