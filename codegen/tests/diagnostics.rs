@@ -783,3 +783,36 @@ fn an_angle_as_a_coordinate_of_a_point_is_a_unit_mix() {
         assert_eq!(errors(&format!("pub struct S {{ {body} }}")), Vec::<String>::new(), "{body}");
     }
 }
+
+/// A misspelt option, or a misspelt `kinloop` before it, gets the word meant, as a misspelt
+/// item keyword does; a word like none of them gets the list alone.
+#[test]
+fn a_misspelt_option_gets_the_option() {
+    let decl = |attr: &str| {
+        errors(&format!(
+            "{attr} pub struct S {{ params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; }}"
+        ))
+    };
+    for (attr, meant) in [
+        ("#[kinloop(Dense)]", "dense"),
+        ("#[kinloop(newtn)]", "newton"),
+        ("#[kinloop(sensitivites)]", "sensitivities"),
+        ("#[kinloop(dense, nweton)]", "newton"),
+    ] {
+        let e = decl(attr);
+        assert_eq!(e.len(), 1, "{attr}: {e:#?}");
+        assert!(
+            e[0].starts_with(&format!("unknown kinloop option (did you mean `{meant}`?); the supported")),
+            "{attr}: {e:#?}"
+        );
+    }
+    for (attr, meant) in [("#[kinlop(dense)]", "kinloop"), ("#[Kinloop(dense)]", "kinloop")] {
+        let e = decl(attr);
+        assert_eq!(e.len(), 1, "{attr}: {e:#?}");
+        assert!(e[0].contains(&format!("(did you mean `#[{meant}(...)]`?)")), "{e:#?}");
+    }
+    let e = decl("#[kinloop(fast)]");
+    assert!(e[0].starts_with("unknown kinloop option; the supported options are"), "{e:#?}");
+    let e = decl("#[inline]");
+    assert!(!e[0].contains("did you mean"), "{e:#?}");
+}

@@ -11,6 +11,7 @@
 //! together.
 
 use super::item::{inner_attribute, not_struct_doc, parse_item, skip_item};
+use super::suggest::similar;
 use super::syntax::{Errors, MechanismDef, Options};
 use super::{limits, names};
 use proc_macro2::{Span, TokenStream};
@@ -177,15 +178,28 @@ fn split_attributes(attrs: Vec<Attribute>, errors: &mut Errors) -> (Vec<Attribut
             let msg = if attr.path().is_ident("derive") {
                 "remove `#[derive(...)]`: kinloop derives Clone, Copy, Debug and PartialEq itself, \
                  and implements Default when every parameter has a default value"
+                    .to_string()
             } else {
-                "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `newton`, `sensitivities`) are \
-                 accepted before a mechanism"
+                // A misspelt `kinloop` (`kinlop`, `Kinloop`) is named with the word meant.
+                let word = attr.path().get_ident().map(Ident::to_string).unwrap_or_default();
+                let kinloop = ["kinloop".to_string()];
+                let hint = match similar(&word, kinloop.iter()) {
+                    Some(k) => format!(" (did you mean `#[{k}(...)]`?)"),
+                    None => String::new(),
+                };
+                format!(
+                    "only doc comments (`///`) and `#[kinloop(...)]` options (`dense`, `newton`, `sensitivities`) \
+                     are accepted before a mechanism{hint}"
+                )
             };
             errors.push(syn::Error::new_spanned(attr.path(), msg));
         }
     }
     (docs, options)
 }
+
+/// The options `#[kinloop(...)]` takes.
+const OPTIONS: [&str; 3] = ["dense", "newton", "sensitivities"];
 
 /// One option of `#[kinloop(...)]`, recorded with its span. A value given to it (`dense = 1`,
 /// `dense(1)`) or an option given twice is reported and the rest still read: syn's own message
@@ -200,10 +214,17 @@ fn parse_option(meta: &syn::meta::ParseNestedMeta, options: &mut Options, errors
         // Closed-form hook: the option forcing Newton.
         (&mut options.newton, "newton")
     } else {
-        return Err(meta.error(
-            "unknown kinloop option; the supported options are `#[kinloop(dense)]`, \
-             `#[kinloop(newton)]` and `#[kinloop(sensitivities)]`",
-        ));
+        // A misspelt option (`Dense`, `newtn`) is named with the option meant.
+        let word = meta.path.get_ident().map(Ident::to_string).unwrap_or_default();
+        let options: Vec<String> = OPTIONS.iter().map(|o| o.to_string()).collect();
+        let hint = match similar(&word, options.iter()) {
+            Some(o) => format!(" (did you mean `{o}`?)"),
+            None => String::new(),
+        };
+        return Err(meta.error(format!(
+            "unknown kinloop option{hint}; the supported options are `#[kinloop(dense)]`, \
+             `#[kinloop(newton)]` and `#[kinloop(sensitivities)]`"
+        )));
     };
     if let Some(value) = option_value(meta)? {
         errors
