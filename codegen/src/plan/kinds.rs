@@ -40,6 +40,9 @@ pub struct Kinds {
     pub unknowns: Vec<Kind>,
     /// Per flat output column: `x`, `y` per point, then the scalars.
     pub outputs: Vec<Kind>,
+    /// Per parameter: an angle parameter's value bounds where its sums with other angles are
+    /// resolved (see the runtime's `largest_precise_angle`).
+    pub params: Vec<Kind>,
 }
 
 /// Classifies the columns of `model`, whose expressions are nodes of `g`.
@@ -48,12 +51,13 @@ pub fn classify(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeI
     let of = |l: Leaf| leaves.get(&l).copied().flatten().unwrap_or(Kind::Other);
     let inputs = (0..model.inputs.len()).map(|i| of(Leaf::Input(i as u16))).collect();
     let unknowns = (0..model.unknowns.len()).map(|u| of(Leaf::Unknown(u as u16))).collect();
+    let params = (0..model.params.len()).map(|k| of(Leaf::Param(k as u16))).collect();
     let n_point_columns = 2 * model.points.len();
     let scalars = &outputs[n_point_columns.min(outputs.len())..];
     let dims = dimensions(g, scalars, &of);
     let mut out = vec![Kind::Length; n_point_columns];
     out.extend(scalars.iter().map(|s| dims[s].kind()));
-    Kinds { inputs, unknowns, outputs: out }
+    Kinds { inputs, unknowns, outputs: out, params }
 }
 
 /// The kind of every classified leaf (`None`: reached as two different kinds).
@@ -307,5 +311,19 @@ mod tests {
         let src = "pub struct Cam { params h = 0.02, k = 2; input phi; unknowns s, w = k * deg(10);
                    eq lift: s == h * phi; eq lag: w == k * s; }";
         assert_eq!(kinds_of(src).1[1], Kind::Other);
+    }
+
+    /// A parameter added to an unknown inside a polar vector (`bf @ (th2 + alpha_b)`) is an
+    /// angle, the lengths beside it lengths: the parameters whose size the runtime bounds.
+    #[test]
+    fn a_parameter_turning_a_link_is_an_angle() {
+        let src = "pub struct ClassFour { params oa = 1, ac = 2.3, bd = 1.6, bf = 3.5, alpha_b = 0.3, cd = 2, ef = 3.4;
+                   input phi; unknowns th1 = 1.4, th2 = 3, psi1 = -0.8, psi2 = -1;
+                   loop a: oa @ phi + ac @ th1 + cd @ psi1 == (4.4, 0.6) + bd @ th2;
+                   loop b: oa @ phi + ac @ th1 + ef @ psi2 == (4.4, 0.6) + bf @ (th2 + alpha_b); }";
+        let p = crate::plan_declaration(src.parse().expect("tokens")).unwrap_or_else(|e| panic!("{e}"));
+        let k = classify(&p.model, &p.plan.graph, &p.plan.residuals, &p.plan.outputs);
+        use Kind::{Angle, Length};
+        assert_eq!(k.params, [Length, Length, Length, Length, Angle, Length, Length]);
     }
 }
