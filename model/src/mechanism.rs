@@ -7,7 +7,7 @@ use crate::blocks::StepFailure;
 use crate::model::{Model, State, StepError};
 use kinloop_runtime::dims::{Dims, Heap, JacBuf, KinBuf, Sizes};
 use kinloop_runtime::generated::{
-    BlockFailure, block_error, first_bad_value, first_non_finite_state, turns_culprit, turns_error,
+    BlockFailure, block_error, first_bad_value, first_non_finite_state, imprecise_param, turns_culprit, turns_error,
 };
 use kinloop_runtime::paths::sweep::SweepOf;
 use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, Quantity, QuantityKind, SweepConfig};
@@ -53,6 +53,11 @@ impl Info {
             return Err(Error::InvalidArgument(format!("{unset}, in `{}`", model.name())));
         }
         config.validate()?;
+        let bound = config.newton.largest_precise_angle();
+        if let Some(k) = model.angle_param_beyond(bound) {
+            let value = model.param_values()[k].unwrap_or(f64::NAN);
+            return Err(imprecise_param(model.name(), &model.params()[k], value, bound));
+        }
         let sizes = Sizes { n: model.unknowns().len(), ni: model.inputs().len(), no: model.outputs().len() };
         Ok(Info {
             sizes,
@@ -257,6 +262,7 @@ impl Info {
             StepError::InvalidConfig(field) => {
                 block_error(BlockFailure::InvalidConfig { field }, *self.location(x, None))
             }
+            StepError::ImpreciseParam { param, value, bound } => imprecise_param(&self.name, &param, value, bound),
             StepError::NonFinitePosition { unknown, value } => {
                 self.bad_values(m, x, None).unwrap_or_else(|| Error::NonFinite {
                     what: Quantity::Position,

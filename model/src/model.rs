@@ -60,6 +60,16 @@ pub enum StepError {
     },
     /// The solver configuration has a field out of range.
     InvalidConfig(&'static str),
+    /// An angle parameter is beyond the configuration's `largest_precise_angle` (`bound`): an
+    /// angle added to it is lost to rounding (see `Mechanism::check_param_angles`).
+    ImpreciseParam {
+        /// The parameter's name.
+        param: String,
+        /// Its value.
+        value: f64,
+        /// The bound.
+        bound: f64,
+    },
     /// A block failed.
     Block {
         /// The block's index in solve order.
@@ -84,6 +94,11 @@ impl fmt::Display for StepError {
             StepError::UnsetParam(p) => write!(f, "parameter `{p}` has no value (it has no default: give one)"),
             StepError::Size { what, expected, given } => write!(f, "{given} {what} given, {expected} expected"),
             StepError::InvalidConfig(field) => write!(f, "solver configuration: `{field}` is out of range"),
+            StepError::ImpreciseParam { param, value, bound } => write!(
+                f,
+                "parameter `{param}` is an angle of {value:e} rad, beyond {bound:e} rad, the largest angle \
+                 solved to the residual tolerance; reduce it by whole turns"
+            ),
             StepError::Block { block, failure } => {
                 write!(f, "block {block}: {failure} (`Model::explain` names its unknowns and equations)")
             }
@@ -145,6 +160,8 @@ pub struct Model {
     input_kinds: Vec<QuantityKind>,
     unknown_kinds: Vec<QuantityKind>,
     output_kinds: Vec<QuantityKind>,
+    /// The parameters that are angles (by index), whose size `angle_param_beyond` bounds.
+    angle_params: Vec<usize>,
     /// Per unknown: whether it follows the others (the compiled `Mechanism::FOLLOWERS`).
     pub(crate) followers: Vec<bool>,
     /// Per unknown: whether a closed form gives it as an angle (`CLOSED_FORM_ANGLES`).
@@ -402,6 +419,7 @@ impl Model {
             input_kinds: k.inputs.iter().map(|&x| kind(x)).collect(),
             unknown_kinds: k.unknowns.iter().map(|&x| kind(x)).collect(),
             output_kinds: k.outputs.iter().map(|&x| kind(x)).collect(),
+            angle_params: (0..k.params.len()).filter(|&p| k.params[p] == Kind::Angle).collect(),
             followers,
             closed_form_angles,
             block_rows_cols,
@@ -588,6 +606,13 @@ impl Model {
     /// intermediate values.
     pub fn registers(&self) -> usize {
         self.regs.len()
+    }
+
+    /// The first angle parameter whose value is finite and larger in magnitude than `bound`
+    /// (the compiled mechanism's `angle_param_beyond`).
+    pub(crate) fn angle_param_beyond(&self, bound: f64) -> Option<usize> {
+        let beyond = |v: f64| v.abs() > bound && v.is_finite();
+        self.angle_params.iter().copied().find(|&k| self.param_values[k].is_some_and(beyond))
     }
 
     /// The first parameter without a value, kept by `load_params` (every change of a parameter
@@ -894,8 +919,14 @@ impl Model {
     }
 
     /// [`Model::kinematics`] from the declared initial guess with the default configuration
-    /// (the compiled mechanism's `solve`).
+    /// (the compiled mechanism's `solve`). An angle parameter beyond the configuration's
+    /// `largest_precise_angle` is [`StepError::ImpreciseParam`], as the compiled `solve` refuses it.
     pub fn solve(&mut self, x: &[f64]) -> Result<&State, StepError> {
+        let bound = NewtonConfig::default().largest_precise_angle();
+        if let Some(k) = self.angle_param_beyond(bound) {
+            let (param, value) = (self.params[k].clone(), self.param_values[k].unwrap_or(f64::NAN));
+            return Err(StepError::ImpreciseParam { param, value, bound });
+        }
         let mut guess = vec![0.0; self.unknowns.len()];
         self.guess(x, &mut guess)?;
         self.kinematics(x, &guess, &NewtonConfig::default())

@@ -533,3 +533,73 @@ fn a_folded_dyad_that_cannot_close_reports_its_gap_alike_at_every_scale() {
         assert!((residual - 1.0 / 7.0).abs() <= 1e-15, "size {k:e}: {residual}");
     }
 }
+
+/// The class IV group with its angle parameter `alpha_b` set to `value`, compiled and read.
+fn class_four_at(alpha_b: f64) -> (fx::ClassFour, Model) {
+    let compiled = fx::ClassFour { alpha_b, ..fx::ClassFour::default() };
+    let mut model = read(fx::CLASS_FOUR_TEXT);
+    set(&mut model, &[("alpha_b", alpha_b)]);
+    (compiled, model)
+}
+
+/// An angle parameter so large that an angle added to it is rounded beyond the tolerance
+/// (`th2 + alpha_b`, where doubles are coarser than `largest_precise_angle` allows; at `1e80`
+/// the sum is `alpha_b` itself): the equations are not the declared ones. A point solve at
+/// `1e80` returned positions 4.5 length units off the declared loop `aefb` (checked in mpmath,
+/// `imprecise_angle_param.py`), and a sweep ground through 100,000 steps a sample before it
+/// failed. Both are refused before any solve, compiled and read alike, naming the parameter, its
+/// value and the bound.
+#[test]
+fn an_angle_parameter_beyond_the_precise_angles_is_refused() {
+    let bound = NewtonConfig::default().largest_precise_angle();
+    // The next double beyond the bound, and far beyond it.
+    for alpha_b in [f64::from_bits(bound.to_bits() + 1), 1e80, -1e80] {
+        let (compiled, mut model) = class_four_at(alpha_b);
+        let solved = compiled.solve(0.5).map(|_| ()).unwrap_err();
+        let message = solved.to_string();
+        assert!(matches!(solved, Error::InvalidArgument(_)), "{alpha_b:e}: {solved:?}");
+        for part in ["`alpha_b`", &format!("{alpha_b:e} rad"), &format!("{bound:e} rad"), "whole turns"] {
+            assert!(message.contains(part), "{part}: {message}");
+        }
+        let guess = compiled.guess(0.0);
+        assert_eq!(compiled.kinematics(0.5, &guess).map(|_| ()).unwrap_err(), solved);
+        assert_eq!(compiled.position(0.5, &guess).map(|_| ()).unwrap_err(), solved);
+        assert_eq!(compiled.sweep(0.0, 1.0, 3, &guess).map(|_| ()).unwrap_err(), solved);
+        assert_eq!(compiled.sampled(0.0, 1.0, 3, &guess).map(|_| ()).unwrap_err(), solved);
+        assert_eq!(compiled.reachable(0.5, 0.1, &guess, 3).map(|_| ()).unwrap_err(), solved);
+        assert_eq!(compiled.assembly_modes(0.5).map(|_| ()).unwrap_err(), solved);
+        assert_eq!(compiled.trace_curve(0.0, 1.0, &guess, &Default::default()).map(|_| ()).unwrap_err(), solved);
+        // The model's: its step's error, and the same error as the compiled one.
+        let step = model.solve(&[0.5]).map(|_| ()).unwrap_err();
+        assert!(
+            matches!(&step, StepError::ImpreciseParam { param, value, .. } if param == "alpha_b" && *value == alpha_b)
+        );
+        let explained = model.explain(&[0.5], &<[f64; 4]>::from(guess), &NewtonConfig::default(), step);
+        assert_eq!(explained, solved);
+        let swept = model.sweep(&[0.0], &[1.0], 3, &<[f64; 4]>::from(guess)).map(|_| ()).unwrap_err();
+        assert_eq!(swept, solved);
+    }
+}
+
+/// An angle parameter just within the bound still solves, compiled and read, to the positions of
+/// the declared mechanism with `alpha_b = 4.5e6` exactly, computed in mpmath at 50 digits
+/// (`imprecise_angle_param.py`, whose output is below).
+#[test]
+fn an_angle_parameter_within_the_precise_angles_solves() {
+    let alpha_b = 4.5e6;
+    assert!(alpha_b <= NewtonConfig::default().largest_precise_angle());
+    // mpmath: q at alpha_b = 4.5e6, phi = 0.5, from the declared guess.
+    let reference = [1.1172053298592558, 1.932314203432634, -0.2270817766603773, -1.2387915261821983];
+    // mpmath: dq/dalpha_b there, the largest magnitude 1.02264. `th2 + alpha_b` is rounded by
+    // at most half the spacing of doubles at alpha_b (4.7e-10 rad): the positions are off by at
+    // most that times dq/dalpha_b; twice it, for the other roundings of the solve.
+    let spacing = f64::from_bits(alpha_b.to_bits() + 1) - alpha_b;
+    let tol = 2.0 * 1.03 * spacing / 2.0;
+    let (compiled, mut model) = class_four_at(alpha_b);
+    let q: [f64; 4] = compiled.solve(0.5).unwrap_or_else(|e| panic!("{e}")).q.into();
+    let read_q = model.solve(&[0.5]).unwrap_or_else(|e| panic!("{e}")).q.clone();
+    for (u, r) in reference.iter().enumerate() {
+        assert!((q[u] - r).abs() <= tol, "compiled {u}: {} against {r}, tol {tol:e}", q[u]);
+        assert!((read_q[u] - r).abs() <= tol, "read {u}: {} against {r}, tol {tol:e}", read_q[u]);
+    }
+}

@@ -112,4 +112,7 @@ where
     fn check_params(&self) -> Result<(), Error> {
         self.mechanism.check_params()
     }
+    fn angle_param_beyond(&self, bound: f64) -> Option<usize> {
+        self.mechanism.angle_param_beyond(bound)
+    }
 }

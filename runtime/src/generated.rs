@@ -664,4 +664,4 @@ pub use par_sets::par_sets;
 
 // The name-agnostic cores of a failed step's diagnosis (see `diagnosis`).
 mod diagnosis;
-pub use diagnosis::{block_error, first_bad_value, turns_culprit, turns_error};
+pub use diagnosis::{block_error, first_bad_value, imprecise_param, turns_culprit, turns_error};

@@ -4,7 +4,7 @@
 
 use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
-use crate::generated::{block_error, first_bad_value, turns_culprit, turns_error};
+use crate::generated::{block_error, first_bad_value, imprecise_param, turns_culprit, turns_error};
 use crate::kin::{ByValue, Jac, Kin, KinSink, Sens};
 use crate::kinds::QuantityKind;
 use crate::paths::config::SweepConfig;
@@ -192,6 +192,26 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     fn outputs_flat(&self, x: &[f64; NI], q: &[f64; N]) -> [f64; NO];
     /// Residuals, the full Jacobian `df/dq` and `df/dx` at `(x, q)` (continuation, event location).
     fn jacobian_flat(&self, x: &[f64; NI], q: &[f64; N]) -> Jac<N, NI>;
+    /// The first parameter (its index in [`Mechanism::PARAMS`]) that `mechanism!` found to be
+    /// an angle and whose value is finite and larger in magnitude than `bound`. By default
+    /// none, for hand-written implementations. See [`Mechanism::check_param_angles`].
+    #[doc(hidden)]
+    fn angle_param_beyond(&self, bound: f64) -> Option<usize> {
+        let _ = bound;
+        None
+    }
+    /// Checks that no angle parameter is beyond [`NewtonConfig::largest_precise_angle`] of
+    /// `cfg`: added to an angle of order one (`th2 + alpha_b`), such a value loses it to
+    /// rounding (at `1e80`, `th2 + alpha_b == alpha_b`), so the equations would not be the
+    /// declared ones and a solve would answer for another mechanism. `Error::InvalidArgument`
+    /// names the parameter, its value and the bound. Made once at a solve's or a sweep's entry.
+    #[inline]
+    fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error> {
+        match self.angle_param_beyond(cfg.largest_precise_angle()) {
+            None => Ok(()),
+            Some(k) => Err(imprecise_param_of(self, k, cfg)),
+        }
+    }
     /// Checks that every parameter is finite.
     fn check_params(&self) -> Result<(), Error> {
         let values = self.param_values();
@@ -365,6 +385,19 @@ where
         inputs: M::INPUTS.iter().map(|&n| Cow::Borrowed(n)).zip(x.iter().copied()).collect(),
         block: block.and_then(|b| M::BLOCKS.get(b).map(|i| (b, i.clone()))),
     }
+}
+
+/// The error of the angle parameter `k` of `m` beyond the bound of `cfg` (see
+/// [`Mechanism::check_param_angles`]).
+#[cold]
+#[inline(never)]
+fn imprecise_param_of<M, const N: usize, const NI: usize, const NO: usize>(m: &M, k: usize, cfg: &NewtonConfig) -> Error
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    let value = m.param_values().get(k).copied().unwrap_or(f64::NAN);
+    let name = M::PARAMS.get(k).copied().unwrap_or("?");
+    imprecise_param(M::NAME, name, value, cfg.largest_precise_angle())
 }
 
 /// The first non-finite parameter, input or guess of `m`, as an error: a bad value given by the

@@ -80,6 +80,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     ) -> Result<(Self::Unknowns, SolveReport), Error> {
         // The generated `position_flat` solves a mechanism outside the closed forms' sizes
         // again itself (`rescue_position`, see `extreme_scale`).
+        self.check_param_angles(cfg)?;
         let (q, report) = self.position_flat(&input.into().into(), &(*guess).into(), cfg)?;
         Ok((q.into(), report))
     }
@@ -97,6 +98,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         guess: &Self::Unknowns,
         cfg: &NewtonConfig,
     ) -> Result<Self::State, Error> {
+        self.check_param_angles(cfg)?;
         self.kinematics_flat(&input.into().into(), &(*guess).into(), cfg).map(Self::State::from)
     }
 
@@ -112,7 +114,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// Full kinematics at `input`, starting from the declared initial guess.
     fn solve(&self, input: impl Into<Self::Inputs>) -> Result<Self::State, Error> {
         let x: [f64; NI] = input.into().into();
-        self.kinematics_flat(&x, &self.guess_flat(&x), &self.solver_config().newton).map(Self::State::from)
+        let cfg = self.solver_config().newton;
+        self.check_param_angles(&cfg)?;
+        self.kinematics_flat(&x, &self.guess_flat(&x), &cfg).map(Self::State::from)
     }
 
     /// A lazy sweep of `samples` equally spaced inputs from `from` to `to` (both included) that
@@ -125,6 +129,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         samples: usize,
         guess: &Self::Unknowns,
     ) -> Result<Sweep<'_, Self, Self::State, N, NI, NO>, Error> {
+        self.check_param_angles(&self.solver_config().newton)?;
         Sweep::new(self, from.into().into(), to.into().into(), samples, (*guess).into())
     }
 
@@ -140,6 +145,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         samples: usize,
         guess: &Self::Unknowns,
     ) -> Result<Sampled<'_, Self, N, NO, NI>, Error> {
+        self.check_param_angles(&self.solver_config().newton)?;
         Sampled::natural(self, from.into().into(), to.into().into(), samples, (*guess).into())
     }
 
@@ -169,6 +175,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         guess: &Self::Unknowns,
         samples: usize,
     ) -> Result<Reach<Self::Inputs>, Error> {
+        self.check_param_angles(&self.solver_config().newton)?;
         let reach = reachable(self, at.into().into(), delta.into().into(), (*guess).into(), samples)?;
         Ok(reach.map_inputs(Self::Inputs::from))
     }
@@ -182,6 +189,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         guess: &Self::Unknowns,
         opts: &TraceConfig,
     ) -> Result<Traced<N, NI>, Error> {
+        self.check_param_angles(&self.solver_config().newton)?;
         trace_curve(self, from.into().into(), to.into().into(), (*guess).into(), opts)
     }
 
@@ -192,6 +200,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// meet).
     fn assembly_modes(&self, input: impl Into<Self::Inputs>) -> Result<Vec<Self::State>, Error> {
         let x: [f64; NI] = input.into().into();
+        self.check_param_angles(&self.solver_config().newton)?;
         Ok(assembly_modes(self, &x, 64, &self.solver_config().newton)?.into_iter().map(Self::State::from).collect())
     }
 }

@@ -96,7 +96,28 @@ fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
         quote!([#(#names),*])
     };
     let (i, u, o) = (list(&kinds.inputs), list(&kinds.unknowns), list(&kinds.outputs));
-    quote!(#rt::kinds!(#ni #i, #n #u [#(#closed),*], #no #o);)
+    let beyond = angle_param_beyond(model, &kinds.params);
+    quote!(#rt::kinds!(#ni #i, #n #u [#(#closed),*], #no #o); #beyond)
+}
+
+/// `angle_param_beyond` of the `Mechanism` implementation, where a parameter is an angle (the
+/// default says none is): the first angle parameter finite and beyond the bound, by one test
+/// per angle parameter, which a solve's entry makes once (not on every step).
+fn angle_param_beyond(model: &Model, kinds: &[Kind]) -> TokenStream {
+    let angles: Vec<_> = model.params.iter().zip(kinds).enumerate().filter(|(_, (_, k))| **k == Kind::Angle).collect();
+    if angles.is_empty() {
+        return TokenStream::new();
+    }
+    let tests = angles.iter().map(|(k, (p, _))| {
+        let (name, k) = (&p.name, lit(*k));
+        quote!(if self.#name.abs() > __bound && self.#name.is_finite() { return ::core::option::Option::Some(#k); })
+    });
+    quote! {
+        fn angle_param_beyond(&self, __bound: f64) -> ::core::option::Option<usize> {
+            #(#tests)*
+            ::core::option::Option::None
+        }
+    }
 }
 
 /// `FOLLOWERS` of the `Mechanism` implementation (see [`crate::plan::followers`]), when an

@@ -102,3 +102,20 @@ pub fn turns_error(name: Cow<'static, str>, value: f64, at: Location) -> Error {
     let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
     Error::TooManyTurns { name, value, turns: value / core::f64::consts::TAU, spacing, at: Box::new(at) }
 }
+
+/// The error of the angle parameter `name` of `mechanism` at `value`, beyond `bound` (the
+/// configuration's `largest_precise_angle`): an angle added to it is lost to rounding, so the
+/// equations are not the declared ones. Public for a mechanism read at run time
+/// (`kinloop_model`), whose error must be the compiled one.
+#[cold]
+#[inline(never)]
+pub fn imprecise_param(mechanism: &str, name: &str, value: f64, bound: f64) -> Error {
+    // The distance to the next double away from zero: what an angle added to it is rounded to.
+    let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
+    Error::InvalidArgument(format!(
+        "parameter `{name}` of `{mechanism}` is an angle of {value:e} rad, beyond {bound:e} rad, the \
+         largest angle solved to the residual tolerance: doubles there are {spacing:e} rad apart, so an \
+         angle added to it is rounded to that spacing (lost where the spacing passes a turn) and the \
+         equations are not the declared ones; reduce it by whole turns (e.g. `{name}.rem_euclid(TAU)`, TAU = 2 pi)"
+    ))
+}
