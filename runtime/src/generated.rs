@@ -550,7 +550,8 @@ pub use crate::__kinds as kinds;
 
 /// The names and the decomposition of a generated mechanism in its `Mechanism` implementation,
 /// from the inherent constants of the same names, and its parameter values as a `Vec`:
-/// `mechanism_consts!(Name, N, NI, NO)`. One line of expansion instead of nine.
+/// `mechanism_consts!(Name, N, NI, NO)`, and with `; 5 f` (the parameters that are angles, index
+/// and field) `Mechanism::angle_param_beyond`. One line of expansion instead of nine or more.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __mechanism_consts {
@@ -564,6 +565,18 @@ macro_rules! __mechanism_consts {
         const BLOCKS: &'static [$crate::BlockInfo] = $name::BLOCKS;
         fn param_values(&self) -> ::std::vec::Vec<f64> {
             $name::param_values(self).to_vec()
+        }
+    };
+    // With the parameters that are angles (index and field: `; 5 f`),
+    // `Mechanism::angle_param_beyond`: one test per angle parameter, made at a solve's entry,
+    // never per step.
+    ($name:ident, $n:literal, $ni:literal, $no:literal; $($k:literal $p:ident),+) => {
+        $crate::__mechanism_consts!($name, $n, $ni, $no);
+        fn angle_param_beyond(&self, bound: f64) -> ::core::option::Option<usize> {
+            $(if self.$p.abs() > bound && self.$p.is_finite() {
+                return ::core::option::Option::Some($k);
+            })+
+            ::core::option::Option::None
         }
     };
 }

@@ -77,8 +77,9 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
 /// `INPUT_KINDS`, `UNKNOWN_KINDS`, `CLOSED_FORM_ANGLES`, `OUTPUT_KINDS` of the `Mechanism`
 /// implementation: the kind of quantity of every column (see [`crate::plan::kinds`]) by its
 /// name, and which unknowns a closed-form block gives as angles, written out by the runtime's
-/// macro (the inherent constants forward to them).
-fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
+/// macro (the inherent constants forward to them); and the tail of `mechanism_consts!` that
+/// lists the parameters that are angles (`; 5 f`, empty where none is).
+fn kind_constants(model: &Model, plan: &Plan) -> (TokenStream, TokenStream) {
     let rt = runtime();
     let Dims { n, ni, no, .. } = Dims::of(plan);
     let kinds = crate::plan::kinds::classify(model, &plan.graph, &plan.residuals, &plan.outputs);
@@ -96,28 +97,14 @@ fn kind_constants(model: &Model, plan: &Plan) -> TokenStream {
         quote!([#(#names),*])
     };
     let (i, u, o) = (list(&kinds.inputs), list(&kinds.unknowns), list(&kinds.outputs));
-    let beyond = angle_param_beyond(model, &kinds.params);
-    quote!(#rt::kinds!(#ni #i, #n #u [#(#closed),*], #no #o); #beyond)
-}
-
-/// `angle_param_beyond` of the `Mechanism` implementation, where a parameter is an angle (the
-/// default says none is): the first angle parameter finite and beyond the bound, by one test
-/// per angle parameter, which a solve's entry makes once (not on every step).
-fn angle_param_beyond(model: &Model, kinds: &[Kind]) -> TokenStream {
-    let angles: Vec<_> = model.params.iter().zip(kinds).enumerate().filter(|(_, (_, k))| **k == Kind::Angle).collect();
-    if angles.is_empty() {
-        return TokenStream::new();
-    }
-    let tests = angles.iter().map(|(k, (p, _))| {
-        let (name, k) = (&p.name, lit(*k));
-        quote!(if self.#name.abs() > __bound && self.#name.is_finite() { return ::core::option::Option::Some(#k); })
-    });
-    quote! {
-        fn angle_param_beyond(&self, __bound: f64) -> ::core::option::Option<usize> {
-            #(#tests)*
-            ::core::option::Option::None
-        }
-    }
+    // The parameters that are angles, for `Mechanism::angle_param_beyond`, which the runtime's
+    // `mechanism_consts!` writes from them: a few tokens of its line, not a method of the
+    // expansion's (whose every line a reader of it reads).
+    let angles: Vec<_> =
+        model.params.iter().zip(&kinds.params).enumerate().filter(|(_, (_, k))| **k == Kind::Angle).collect();
+    let (ks, names) = (angles.iter().map(|(k, _)| lit(*k)), angles.iter().map(|(_, (p, _))| &p.name));
+    let angle_params = if angles.is_empty() { TokenStream::new() } else { quote!(; #(#ks #names),*) };
+    (quote!(#rt::kinds!(#ni #i, #n #u [#(#closed),*], #no #o);), angle_params)
 }
 
 /// `FOLLOWERS` of the `Mechanism` implementation (see [`crate::plan::followers`]), when an
@@ -155,7 +142,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let guess = straight_line(plan, &names, &plan.guesses, false);
     let jacobian = jacobian_body(plan, &names);
     let lints = kernel_lints();
-    let kinds = kind_constants(model, plan);
+    let (kinds, angle_params) = kind_constants(model, plan);
     let followers = followers_constant(plan);
     let drawing = super::drawing::constant(model);
     let (x, q, g, cfg) = (
@@ -219,7 +206,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     quote! {
         #lints
         impl #rt::Mechanism<#n, #ni, #no> for #name {
-            #rt::mechanism_consts!(#name, #n, #ni, #no);
+            #rt::mechanism_consts!(#name, #n, #ni, #no #angle_params);
             #kinds
             #followers
             #drawing
