@@ -9,19 +9,18 @@
 //! 1e-320, nan, inf, integers beyond any integer type); a token nested 10,000 parentheses
 //! deep (closed or not); the text cut short; letters and marks outside ASCII inserted; a
 //! line repeated. Deterministic (a xorshift generator, a fixed seed); each case runs on a
-//! thread of its own under a time limit, which only a hang reaches.
+//! thread of its own (a hang shows as a test that does not end, which the test harness names;
+//! no test here reads the clock, which a loaded host would make fail).
 //!
 //! `KINLOOP_FUZZ_CASES` (cases per declaration, 100 by default) and `KINLOOP_FUZZ_SEED` run a
 //! longer campaign, best in release (`cargo test --release -p kinloop-model --test
-//! token_mutations`); `KINLOOP_FUZZ_LIMIT` is the time limit of a case in seconds, and
-//! `KINLOOP_FUZZ_TRACE` a file each case is written to before it runs (what a stack overflow,
+//! token_mutations`), and `KINLOOP_FUZZ_TRACE` a file each case is written to before it runs (what a stack overflow,
 //! which aborts the process, leaves behind).
 
 use kinloop_fixtures as fx;
 use kinloop_model::{Model, ReadError, source};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
-use std::time::{Duration, Instant};
 
 /// The fixtures' declarations, as `mechanism!` compiles them (one line each, as `stringify!`
 /// writes tokens): kinds of blocks and items the shipped files do not have (class IV groups,
@@ -382,10 +381,9 @@ fn run_model(mut m: Model, problems: &mut Vec<String>) {
 }
 
 /// How a case ended, when it did not end well.
-fn run_case(name: &str, text: &str, limit: Duration) -> Result<Duration, String> {
+fn run_case(name: &str, text: &str) -> Result<(), String> {
     let (tx, rx) = mpsc::channel();
     let (name, text) = (name.to_string(), text.to_string());
-    let started = Instant::now();
     // A thread of the default size (2 MiB, less than a main thread's 8): what does not
     // overflow it does not overflow a program's reader either.
     std::thread::spawn(move || {
@@ -397,11 +395,11 @@ fn run_case(name: &str, text: &str, limit: Duration) -> Result<Duration, String>
                 .unwrap_or_default()
         }));
     });
-    match rx.recv_timeout(limit) {
-        Ok(Ok(problems)) if problems.is_empty() => Ok(started.elapsed()),
+    match rx.recv() {
+        Ok(Ok(problems)) if problems.is_empty() => Ok(()),
         Ok(Ok(problems)) => Err(problems.join("; ")),
         Ok(Err(panic)) => Err(format!("panicked: {panic}")),
-        Err(_) => Err(format!("still running after {limit:?}: a hang")),
+        Err(_) => Err("the case's thread ended without an answer".to_string()),
     }
 }
 
@@ -413,15 +411,10 @@ fn env<T: std::str::FromStr>(name: &str, default: T) -> T {
 fn mutated_declarations_are_read_solved_and_swept_or_refused_in_words() {
     let cases: usize = env("KINLOOP_FUZZ_CASES", 100);
     let seed: u64 = env("KINLOOP_FUZZ_SEED", 0x6b69_6e6c_6f6f_7033);
-    // A hang detector, not a measure of speed: the slowest case takes about 4 s in debug on a
-    // quiet host (it is printed), and a loaded CI host running the other test binaries beside
-    // this one can take several times that; only a hang reaches this.
-    let limit = Duration::from_secs_f64(env("KINLOOP_FUZZ_LIMIT", 300.0));
     // Seeds mixed (consecutive ones apart), and never 0, which xorshift never leaves.
     let mut rng = Rng(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
     let mut failures = Vec::new();
-    let mut slowest = (Duration::ZERO, String::new());
-    'all: for (name, text) in declarations() {
+    for (name, text) in declarations() {
         for case in 0..cases {
             // One to three edits on the same text.
             let (mut t, mut edits) = (text.clone(), Vec::new());
@@ -435,21 +428,11 @@ fn mutated_declarations_are_read_solved_and_swept_or_refused_in_words() {
             if let Ok(file) = std::env::var("KINLOOP_FUZZ_TRACE") {
                 let _ = std::fs::write(file, format!("{label}\n{t}"));
             }
-            match run_case(&name, &t, limit) {
-                Ok(took) if took > slowest.0 => slowest = (took, label),
-                Ok(_) => {}
-                Err(problem) => {
-                    let hang = problem.ends_with("a hang");
-                    failures.push(format!("{label}: {problem}"));
-                    // The hung thread goes on: the cases after it would be timed against it.
-                    if hang {
-                        break 'all;
-                    }
-                }
+            if let Err(problem) = run_case(&name, &t) {
+                failures.push(format!("{label}: {problem}"));
             }
         }
     }
-    eprintln!("slowest case: {:?}, {}", slowest.0, slowest.1);
     assert!(failures.is_empty(), "{} of the cases failed:\n{}", failures.len(), failures.join("\n"));
 }
 
