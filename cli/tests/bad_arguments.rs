@@ -88,8 +88,10 @@ struct Scratch {
 }
 
 impl Scratch {
-    fn new() -> Scratch {
-        let dir = std::env::temp_dir().join(format!("kinloop-bad-arguments-{}", std::process::id()));
+    /// A directory of its own for the runs of `user` (a worker, a test): the tests of this file
+    /// run at once in one process, and one's scratch removed at its end must not be another's.
+    fn new(user: &str) -> Scratch {
+        let dir = std::env::temp_dir().join(format!("kinloop-bad-arguments-{}-{user}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("a scratch directory");
         // Targets on the coupler curve of `a = 1.1, b = 2.8` (the README's).
         let targets = "0.9661,1.4940\n1.2330,2.2071\n0.6814,2.4363\n-0.0985,2.1152\n-0.6145,1.4192\n-0.6820,0.7191\n";
@@ -421,10 +423,27 @@ fn judge(option: &str, value: &str, code: Option<i32>, out: &str, err: &str) -> 
 
 #[test]
 fn wrong_arguments_are_refused_in_words_never_a_panic_or_a_hang() {
-    let s = Scratch::new();
+    // The runs are independent processes: shared among workers (each with its own scratch
+    // directory, so that no two runs write the same output file at once) they take a fraction
+    // of the time on a machine of several cores.
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
+    let results: Vec<(usize, Vec<String>)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..workers).map(|w| scope.spawn(move || runs_of_worker(w, workers))).collect();
+        handles.into_iter().map(|h| h.join().expect("a worker")).collect()
+    });
+    let runs: usize = results.iter().map(|r| r.0).sum();
+    let failures: Vec<String> = results.into_iter().flat_map(|r| r.1).collect();
+    eprintln!("{runs} runs");
+    assert!(failures.is_empty(), "{} runs failed:\n{}", failures.len(), failures.join("\n"));
+}
+
+/// The runs of the commands `worker`, `worker + workers`, ... of [`bases`]: how many, and what
+/// was wrong with each that failed.
+fn runs_of_worker(worker: usize, workers: usize) -> (usize, Vec<String>) {
+    let s = Scratch::new(&format!("worker-{worker}"));
     let mut failures = Vec::new();
     let mut runs = 0;
-    for b in bases(&s) {
+    for b in bases(&s).into_iter().skip(worker).step_by(workers) {
         // The command line itself succeeds: the wrong values alone make its runs fail.
         let (code, _, err) = run(&b.args);
         assert_eq!(code, Some(0), "{:?}: {err}", b.args);
@@ -441,8 +460,7 @@ fn wrong_arguments_are_refused_in_words_never_a_panic_or_a_hang() {
             }
         }
     }
-    eprintln!("{runs} runs");
-    assert!(failures.is_empty(), "{} runs failed:\n{}", failures.len(), failures.join("\n"));
+    (runs, failures)
 }
 
 /// The first parameter the declaration `file` lists (what `P` stands for in [`PARAMS`]).
@@ -480,7 +498,7 @@ fn a_parameter_without_a_name_is_refused_naming_params() {
 /// "the parameter `a` is named twice" named none.
 #[test]
 fn a_design_variable_given_twice_is_refused_naming_vary() {
-    let s = Scratch::new();
+    let s = Scratch::new("vary");
     let targets = s.path("points.csv");
     let coupler = shipped("coupler_four_bar.kl");
     let args = ["synth", &coupler, "--targets", &targets, "--path", "p", "--starts", "1", "--jobs", "1"];
