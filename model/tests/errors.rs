@@ -603,3 +603,119 @@ fn an_angle_parameter_within_the_precise_angles_solves() {
         assert!((read_q[u] - r).abs() <= tol, "read {u}: {} against {r}, tol {tol:e}", read_q[u]);
     }
 }
+
+/// The entries the named solves do not go through, each refused once at its start at
+/// `alpha_b = 1e80` (where `th2 + alpha_b == alpha_b`: the equations solved are not the declared
+/// ones, `imprecise_angle_param.py`) with the error of `solve`, naming the parameter, its value
+/// and the bound: a list of inputs (`sweep_at`), a sweep made directly (`Sweep::new`), each
+/// design of a scan (the others go on), the free functions and builders over any compiled
+/// mechanism, and the dynamics' simulation and inverse cycle. Before,
+/// each ground through the wrong equations (a sweep about 1 s a sample before it failed).
+#[test]
+fn the_entries_beside_the_named_solves_refuse_an_angle_parameter_beyond_the_precise_angles() {
+    use kinloop::analysis::Sampled;
+    use kinloop::dynamics::{Body, Coord, DynamicsError, InverseCycle, MassModel, Rotation, Simulation, SpeedLaw};
+    use kinloop::metrics::Limits;
+    use kinloop::paths;
+    let (compiled, _) = class_four_at(1e80);
+    let solved = compiled.solve(0.5).map(|_| ()).unwrap_err();
+    let guess = compiled.guess(0.0);
+    let q: [f64; 4] = guess.into();
+
+    let listed = compiled.sweep_at([0.0, 0.5, 1.0], &guess);
+    assert!(listed.states.is_empty(), "{} states", listed.states.len());
+    assert_eq!(listed.into_result().map(|_| ()).unwrap_err(), solved);
+    let direct = Sweep::<_, Kin<4, 1, 8>, 4, 1, 8>::new(&compiled, [0.0], [1.0], 3, q);
+    assert_eq!(direct.map(|_| ()).unwrap_err(), solved);
+    // The free functions and builders over any compiled mechanism, beside the named methods.
+    let (sampled, path) = (Sampled::sweep(&compiled, 0.0, 1.0, 3, q), Sampled::path(&compiled, [0.0], [1.0], 3, q));
+    assert_eq!(sampled.map(|_| ()).unwrap_err(), solved);
+    assert_eq!(path.map(|_| ()).unwrap_err(), solved);
+    assert_eq!(paths::reach::reachable(&compiled, [0.5], [0.1], q, 3).map(|_| ()).unwrap_err(), solved);
+    let traced = paths::trace::trace_curve(&compiled, [0.0], [1.0], q, &Default::default());
+    assert_eq!(traced.map(|_| ()).unwrap_err(), solved);
+    let modes = paths::modes::assembly_modes(&compiled, &[0.5], 8, &NewtonConfig::default());
+    assert_eq!(modes.map(|_| ()).unwrap_err(), solved);
+    assert_eq!(Limits::new(&compiled, 0.0, 1.0).run().map(|_| ()).unwrap_err(), solved);
+
+    // A scan of a design within the bound and one beyond it: only the second is refused.
+    let designs = [class_four_at(0.62).0, compiled];
+    let spec = kinloop::ScanConfig::new([0.0], [1.0], 3);
+    let count = |n: usize, _: &fx::ClassFour, _: &Kin<4, 1, 8>| n + 1;
+    for results in [kinloop::scan(&designs, &spec, |_| 0, count), kinloop::par_scan(&designs, &spec, |_| 0, count)] {
+        assert_eq!(results[0], Ok(3));
+        assert_eq!(results[1].clone().unwrap_err(), solved);
+    }
+
+    // A body at the point `f` of the loop the parameter turns, turning with `th2`.
+    let f = fx::ClassFour::OUTPUTS.iter().position(|o| *o == "f.x").expect("f.x");
+    let body = Body {
+        name: "dbf".into(),
+        mass: 1.0,
+        com: [Coord::Output(f), Coord::Output(f + 1)],
+        inertia: 0.1,
+        rotation: Rotation::Unknown(1),
+    };
+    let mass = MassModel::new().with_body(body).expect("a body");
+    let kinematic = |e: DynamicsError| match e {
+        DynamicsError::Kinematics { t: None, source } => source,
+        e => panic!("{e}"),
+    };
+    let run = Simulation::new(&compiled, &mass).start(0.5, 1.0).drive(|_, _, _| 1.0).run(1.0);
+    assert_eq!(kinematic(run.map(|_| ()).unwrap_err()), solved);
+    let cycle = InverseCycle::new(&compiled, &mass, SpeedLaw::Constant(1.0)).run();
+    assert_eq!(kinematic(cycle.map(|_| ()).unwrap_err()), solved);
+}
+
+/// Synthesis, compiled and read alike: a design whose angle parameter is beyond the bound of
+/// the problem's Newton configuration is a refused candidate, as one that cannot be assembled
+/// is (counted in `unassembled`), and the refinement from it and its residuals give the reason
+/// (the parameter, its value, the bound). A problem none of whose designs is within the bound
+/// (a parameter not varied at 1e80) is refused by the search with that reason. Before, every
+/// start at `|alpha_b|` near 1e79 solved other equations than the declared ones and was
+/// reported as a design.
+#[test]
+fn synthesis_refuses_a_design_whose_angle_parameter_is_beyond_the_precise_angles() {
+    use kinloop::synthesis::{Design, Search, SynthesisError, Task};
+    let phis = [0.0, 0.4, 0.8, 1.2];
+    let reference = class_four_at(0.62).0;
+    let f = |phi: f64| {
+        let s = reference.solve(phi).unwrap_or_else(|e| panic!("{e}"));
+        [s.out.f.x, s.out.f.y]
+    };
+    let task = Task::path("f", phis.map(f)).timed(phis);
+    // The problem's Newton configuration: positions to rounding (residual 1e-14).
+    let bound = NewtonConfig::default().with_residual_tol(1e-14).largest_precise_angle();
+    let named_with = |e: &SynthesisError, value: &str, bound: f64| {
+        let SynthesisError::Kinematics(Error::InvalidArgument(message)) = e else { panic!("{e:?}") };
+        for part in ["`alpha_b`", &format!("{value} rad"), &format!("{bound:e} rad"), "whole turns"] {
+            assert!(message.contains(part), "{part}: {message}");
+        }
+    };
+    let names = |e: &SynthesisError, value: &str| named_with(e, value, bound);
+    let search = Search::default().with_starts(0..4);
+
+    // `alpha_b` varied over a box almost all beyond the bound: every start refused.
+    let varied = Design::new().var("alpha_b", -1e80, 1e80);
+    let mut model = read(fx::CLASS_FOUR_TEXT);
+    let compiled = kinloop::synthesis::Problem::new(reference, &varied, &task).unwrap();
+    let read_problem = model.synthesis_problem(&varied, &task).unwrap();
+    let report = search.run(&compiled).unwrap();
+    assert_eq!((report.valid, report.unassembled, report.candidates.len()), (0, 4, 0), "{report:#?}");
+    assert_eq!(search.run(&read_problem).unwrap(), report);
+    for e in [search.refine(&compiled, &[1e80]).unwrap_err(), search.refine(&read_problem, &[1e80]).unwrap_err()] {
+        names(&e, "1e80");
+    }
+    names(&compiled.residual_norm(&[-1e80]).unwrap_err(), "-1e80");
+    names(&compiled.residuals(&[1e80]).map(|_| ()).unwrap_err(), "1e80");
+    drop(read_problem);
+
+    // `alpha_b` not varied, at 1e80: no design can be solved, the search says why.
+    let (beyond, mut model) = class_four_at(1e80);
+    let lengths = Design::new().var("oa", 0.9, 1.1);
+    let compiled = kinloop::synthesis::Problem::new(beyond, &lengths, &task).unwrap();
+    names(&search.run(&compiled).unwrap_err(), "1e80");
+    // The model read is refused as its kernel is made, against the default configuration.
+    let default_bound = NewtonConfig::default().largest_precise_angle();
+    named_with(&model.synthesis_problem(&lengths, &task).map(|_| ()).unwrap_err(), "1e80", default_bound);
+}

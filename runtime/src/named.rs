@@ -129,7 +129,7 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         samples: usize,
         guess: &Self::Unknowns,
     ) -> Result<Sweep<'_, Self, Self::State, N, NI, NO>, Error> {
-        self.check_param_angles(&self.solver_config().newton)?;
+        // `Sweep::new` refuses an angle parameter too large to resolve.
         Sweep::new(self, from.into().into(), to.into().into(), samples, (*guess).into())
     }
 
@@ -145,7 +145,6 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         samples: usize,
         guess: &Self::Unknowns,
     ) -> Result<Sampled<'_, Self, N, NO, NI>, Error> {
-        self.check_param_angles(&self.solver_config().newton)?;
         Sampled::natural(self, from.into().into(), to.into().into(), samples, (*guess).into())
     }
 
@@ -161,6 +160,10 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         inputs: impl IntoIterator<Item = I>,
         guess: &Self::Unknowns,
     ) -> SweepResult<Self::State> {
+        // Once for the whole list: each stretch between two inputs is a sweep of its own.
+        if let Err(e) = self.check_param_angles(&self.solver_config().newton) {
+            return SweepResult::new(Vec::new(), Some(e), Vec::new());
+        }
         let inputs = inputs.into_iter().map(|input| -> [f64; NI] { input.into().into() });
         sweep_at_of(&Compiled(self), inputs, (*guess).into()).map(Self::State::from)
     }
@@ -175,7 +178,6 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         guess: &Self::Unknowns,
         samples: usize,
     ) -> Result<Reach<Self::Inputs>, Error> {
-        self.check_param_angles(&self.solver_config().newton)?;
         let reach = reachable(self, at.into().into(), delta.into().into(), (*guess).into(), samples)?;
         Ok(reach.map_inputs(Self::Inputs::from))
     }
@@ -189,7 +191,6 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         guess: &Self::Unknowns,
         opts: &TraceConfig,
     ) -> Result<Traced<N, NI>, Error> {
-        self.check_param_angles(&self.solver_config().newton)?;
         trace_curve(self, from.into().into(), to.into().into(), (*guess).into(), opts)
     }
 
@@ -200,7 +201,6 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// meet).
     fn assembly_modes(&self, input: impl Into<Self::Inputs>) -> Result<Vec<Self::State>, Error> {
         let x: [f64; NI] = input.into().into();
-        self.check_param_angles(&self.solver_config().newton)?;
         Ok(assembly_modes(self, &x, 64, &self.solver_config().newton)?.into_iter().map(Self::State::from).collect())
     }
 }

@@ -226,6 +226,7 @@ where
         guess: impl Into<[f64; N]>,
         cfg: SweepConfig,
     ) -> Result<Self, Error> {
+        m.check_param_angles(&cfg.newton)?;
         SampledOf::input_with(Compiled(m), [from], [to], samples, guess.into(), cfg)
     }
 }
@@ -262,6 +263,7 @@ where
         guess: impl Into<[f64; N]>,
         cfg: SweepConfig,
     ) -> Result<Self, Error> {
+        m.check_param_angles(&cfg.newton)?;
         SampledOf::path_over(Compiled(m), from.into(), to.into(), samples, guess.into(), cfg, &mut |_| ())
     }
 
@@ -274,6 +276,7 @@ where
         samples: usize,
         guess: [f64; N],
     ) -> Result<Self, Error> {
+        m.check_param_angles(&m.solver_config().newton)?;
         SampledOf::over(Compiled(m), from, to, samples, guess, m.solver_config())
     }
 

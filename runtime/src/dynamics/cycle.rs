@@ -192,8 +192,11 @@ where
     /// doubles near it are more than a millionth of the samples' spacing apart (the steps between
     /// the samples could not be told apart), or a speed law that is not finite as
     /// [`DynamicsError::BadValue`]; a kinematic failure over the turn (a limit position: the
-    /// input cannot turn) as [`DynamicsError::Kinematics`]; the model's own errors.
+    /// input cannot turn), or an angle parameter too large to resolve (beyond the configuration's
+    /// `largest_precise_angle`, refused before the turn), as [`DynamicsError::Kinematics`]; the
+    /// model's own errors.
     pub fn run(self) -> Result<Cycle, DynamicsError> {
+        self.m.check_param_angles(&self.m.solver_config().newton).map_err(DynamicsError::kin)?;
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.phi0]));
         let (model, about) = (self.model, self.about);
         Cycle::over_turn(Compiled(self.m), self.phi0, self.samples, guess, self.law, |k, omega, eps| {

@@ -131,7 +131,9 @@ where
     /// change it as [`DynamicsError::CannotAdvance`]; results beyond the range of `f64` as
     /// [`DynamicsError::Overflow`]; a span that needs more steps than the budget
     /// ([`OdeConfig::max_steps`](super::OdeConfig::max_steps) of the configuration's `ode`) as
-    /// [`DynamicsError::TooManySteps`]; integrator failures. Besides the recorded trajectory (one
+    /// [`DynamicsError::TooManySteps`]; an angle parameter too large to resolve (beyond the
+    /// `largest_precise_angle` of the configuration's `newton`) as [`DynamicsError::Kinematics`]
+    /// before any step; integrator failures. Besides the recorded trajectory (one
     /// entry per accepted step, amortised growth), a step allocates nothing.
     pub fn run(self, t_end: f64) -> Result<Trajectory, DynamicsError>
     where
@@ -215,6 +217,8 @@ where
         D: Fn(f64, f64, f64) -> f64,
         S: FnMut(f64, &[f64; 2]) -> bool,
     {
+        // Once at the start, not at each step's solves.
+        self.m.check_param_angles(&self.cfg.newton).map_err(DynamicsError::kin)?;
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.start[0]]));
         let model = self.model;
         let reduced = |k: &Kin<N, 1, NO>, omega: f64| model.dynamics(k, &[omega]);

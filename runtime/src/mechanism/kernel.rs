@@ -430,6 +430,11 @@ pub trait SensKernel: Kernel {
     fn param(&self, k: usize) -> f64;
     /// Every parameter is finite (the mechanism's `check_params`).
     fn check_params(&self) -> Result<(), Error>;
+    /// No angle parameter beyond the [`largest_precise_angle`](NewtonConfig::largest_precise_angle)
+    /// of `cfg` (the compiled [`Mechanism::check_param_angles`], whose error names the
+    /// parameter, its value and the bound): a design whose angle parameter is so large that an
+    /// angle added to it is lost to rounding solves other equations than the declared ones.
+    fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error>;
     /// `f` called with this kernel's parameters set to `p` (one value per parameter, in
     /// declaration order): a compiled mechanism gives `f` a copy with those values (so that a
     /// kernel shared between threads is never changed); a kernel over one workspace (a run-time
@@ -520,6 +525,9 @@ where
     }
     fn check_params(&self) -> Result<(), Error> {
         self.0.check_params()
+    }
+    fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error> {
+        self.0.check_param_angles(cfg)
     }
     /// `f` called with a copy of the mechanism with the parameters `p`
     /// ([`Sensitivities::with_params_flat`]); `p` must have `NP` values.

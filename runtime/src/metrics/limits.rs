@@ -163,6 +163,7 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
     where
         M: Mechanism<N, 1, NO>,
     {
+        self.m.check_param_angles(&self.m.solver_config().newton)?;
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.from]));
         limits_of(Compiled(self.m), self.from, self.to, self.samples, guess, self.columns)
     }

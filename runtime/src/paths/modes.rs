@@ -49,6 +49,7 @@ pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    m.check_param_angles(cfg)?;
     assembly_modes_of(&Compiled(m), x, starts, cfg)
 }
 

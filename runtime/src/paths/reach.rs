@@ -56,6 +56,7 @@ pub fn reachable<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    m.check_param_angles(&m.solver_config().newton)?;
     reachable_of(&Compiled(m), at, delta, guess, samples)
 }
 

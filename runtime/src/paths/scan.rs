@@ -150,6 +150,8 @@ where
 {
     // Before the guess, which may be the user's function of the mechanism.
     check_samples(&spec.from, &spec.to, spec.samples)?;
+    // Each design's own parameters: one whose angle is too large to resolve is that set's error.
+    m.check_param_angles(&spec.config.unwrap_or_else(|| m.solver_config()).newton)?;
     let guess = spec.start.guess::<NI, NO>(m, &spec.from);
     fold_sweep_of(
         Compiled(m),

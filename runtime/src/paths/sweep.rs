@@ -273,8 +273,11 @@ where
     /// `|from|` is far larger than `|to|` (`sweep_at` lands on its inputs exactly). One sample
     /// is the state at `from` alone, with the range to `to` checked as a longer sweep's is (a
     /// range too long for a sweep is refused before any step: a program's test of a range it
-    /// means to sweep).
+    /// means to sweep). An angle parameter beyond the configuration's
+    /// [`largest_precise_angle`](crate::NewtonConfig::largest_precise_angle) is refused here
+    /// ([`Mechanism::check_param_angles`]), once, not at each sample.
     pub fn new(m: &'m M, from: [f64; NI], to: [f64; NI], samples: usize, guess: [f64; N]) -> Result<Self, Error> {
+        m.check_param_angles(&m.solver_config().newton)?;
         SweepOf::over(Compiled(m), from, to, samples, guess)
     }
 }

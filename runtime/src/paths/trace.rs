@@ -218,6 +218,7 @@ pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
+    m.check_param_angles(&opts.newton.unwrap_or(m.solver_config().newton))?;
     trace_curve_of(&Compiled(m), from, to, guess, opts)
 }
 

@@ -344,6 +344,17 @@ impl<K: SensKernel> ProblemOf<K> {
         (lo, hi)
     }
 
+    /// Refuses a problem none of whose designs solves the declared equations: an angle
+    /// parameter beyond the [`largest_precise_angle`](NewtonConfig::largest_precise_angle) of
+    /// the problem's Newton configuration at every point of the box (a parameter not varied, or
+    /// a design variable both of whose bounds lie beyond it). Checked at the design variables'
+    /// values nearest zero: where those are refused, every design is. (A design refused among
+    /// others is refused at its evaluation, as one that cannot be assembled is.)
+    pub(crate) fn check_param_angles(&self) -> Result<(), SynthesisError> {
+        let nearest: Vec<f64> = self.vars.iter().map(|b| 0.0f64.clamp(b.lo, b.hi)).collect();
+        Ok(self.base.with_params(&self.params(&nearest), |m| m.check_param_angles(&self.newton))??)
+    }
+
     /// The parameters with the design variables of `z`.
     pub(crate) fn params(&self, z: &[f64]) -> Vec<f64> {
         let mut p: Vec<f64> = (0..self.base.param_count()).map(|k| self.base.param(k)).collect();

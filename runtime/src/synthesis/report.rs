@@ -30,8 +30,10 @@ pub struct SynthesisReport {
     /// at `0`).
     pub seeds: usize,
     /// Seeds and starts (with differential evolution: members to polish) at which the design
-    /// cannot be assembled at every target (no local solve). With the local solves that ran,
-    /// they count every seed and start (or `polish` per island).
+    /// cannot be assembled at every target (no local solve), or whose angle parameter is too
+    /// large to resolve (beyond the problem's `largest_precise_angle`: the error
+    /// [`Search::refine`](super::Search::refine) from that start gives). With the local solves
+    /// that ran, they count every seed and start (or `polish` per island).
     pub unassembled: usize,
     /// Local solves that met the tolerance (residual or step).
     pub converged: usize,

@@ -112,7 +112,10 @@ impl<K: SensKernel> ProblemOf<K> {
 
     /// [`ProblemOf::residual_norm`] without the check of `z`.
     pub(crate) fn norm_at(&self, z: &[f64]) -> Result<f64, Error> {
-        self.base.with_params(&self.params(z), |m| self.norm_with(m, z))?
+        self.base.with_params(&self.params(z), |m| {
+            m.check_param_angles(&self.newton)?;
+            self.norm_with(m, z)
+        })?
     }
 
     /// [`ProblemOf::norm_at`] on `m`, the mechanism with `z`'s parameters.
@@ -180,7 +183,12 @@ impl<K: SensKernel> ProblemOf<K> {
     /// `guesses` (the previous evaluation's), or else from the first target's guess and each
     /// from the one before.
     pub(crate) fn evaluate(&self, z: &[f64], guesses: Option<&[Q<K>]>) -> Result<Eval<Q<K>>, Error> {
-        self.base.with_params(&self.params(z), |m| self.evaluate_with(m, z, guesses))?
+        // Once per design, not per target: a design whose angle parameter is too large to
+        // resolve is refused as one that cannot be assembled is, with the reason.
+        self.base.with_params(&self.params(z), |m| {
+            m.check_param_angles(&self.newton)?;
+            self.evaluate_with(m, z, guesses)
+        })?
     }
 
     /// [`ProblemOf::evaluate`] on `m`, the mechanism with `z`'s parameters.

@@ -179,6 +179,7 @@ impl Search {
         K: SensKernel,
     {
         self.validate()?;
+        problem.check_param_angles()?;
         for (k, seed) in self.seeds.iter().enumerate() {
             // The seed's index in the message, the kind of error kept.
             problem.check_point(seed).map_err(|e| match e {
