@@ -81,7 +81,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let kinds = model.input_kinds().to_vec();
-    let mut table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, &kinds, req.deg))?;
+    let mut table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, &kinds, req))?;
     // The first row is the start, at time 0: its angle and speed as given, as `solve` writes
     // the inputs given, not their radians times `180/π` (`--start 30 --deg` was written
     // `29.999999999999996`). In radians the same numbers.
@@ -191,13 +191,16 @@ fn config(req: &Request) -> RunConfig {
 /// is a bad argument (a usage error); the rest is the model's (a limit position or a singular
 /// motion reached, a load that is not finite), its input (of kind `kinds`) and speed written in
 /// degrees with `deg`, as the table writes them.
-fn failure(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> Failed {
+fn failure(name: &str, e: Error, kinds: &[QuantityKind], req: &Request) -> Failed {
+    let deg = req.deg;
     let dynamics = match &e {
         Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
         _ => None,
     };
     match dynamics {
-        Some(&DynamicsError::TooManySteps { steps, t, t_end }) => return usage(budget_spent(name, steps, t, t_end)),
+        Some(&DynamicsError::TooManySteps { steps, t, t_end }) => {
+            return usage(budget_spent(name, steps, t, t_end, implied_turns(req)));
+        }
         // A `--time` too short for any step (below about 4e-323, a few subnormals: the time's
         // rounding there is as large as the span): the argument's error, named by its option.
         // It failed as a solve, exit code 1, saying "invalid end time".
@@ -236,10 +239,26 @@ fn failure(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> Failed {
     Failed(exit::SOLVE_FAILED)
 }
 
+/// The turns of the input that `--speed` and `--time` imply at that speed, for a message that
+/// names them as the cause of a span of too many steps: the clause saying so, `None` under a
+/// turn (where the steps are the machine's own motion's, not the speed's: from rest, say).
+fn implied_turns(req: &Request) -> Option<String> {
+    let radians = if req.deg { req.speed.to_radians() } else { req.speed };
+    let turns = radians.abs() * req.time / std::f64::consts::TAU;
+    let count = match turns {
+        n if n < 1.0 || n.is_nan() => return None,
+        n if n.is_finite() => format!("about {} turns", significant(n)),
+        _ => "more turns than a number holds".to_string(),
+    };
+    Some(format!("--speed {} over --time {} is {count} of the input", Number(req.speed), Number(req.time)))
+}
+
 /// The message of a simulation that spent its step budget before `--time`: the options to
-/// change (the runtime's own message names its library setting), and at the pace so far the
-/// steps the whole span needs.
-fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
+/// change (the runtime's own message names its library setting), at the pace so far the steps
+/// the whole span needs, and where the speed turns the input at least once over the span
+/// (`turns`, from [`implied_turns`]), the turns that make those steps, with a lower `--speed`
+/// among the remedies (at `--speed 1e30` only it and a shorter `--time` help).
+fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64, turns: Option<String>) -> String {
     let need = if t > 0.0 { steps as f64 * (t_end / t) } else { f64::INFINITY };
     // More steps than any count `--max-steps` takes (`--time 1e308`): raising it cannot reach
     // the end, and the message said to.
@@ -248,16 +267,23 @@ fn budget_spent(name: &str, steps: usize, t: f64, t_end: f64) -> String {
     } else {
         String::new()
     };
+    let (cause, shorter) = match &turns {
+        Some(turns) => (format!(" ({turns})"), "lower --speed or simulate a shorter --time"),
+        None => (String::new(), "simulate a shorter --time"),
+    };
     let advice = if need <= usize::MAX as f64 {
-        "raise --max-steps, or simulate a shorter --time".to_string()
+        match turns {
+            Some(_) => "raise --max-steps, lower --speed, or simulate a shorter --time".to_string(),
+            None => "raise --max-steps, or simulate a shorter --time".to_string(),
+        }
     } else if need.is_finite() {
-        format!("more than any --max-steps (at most {}): simulate a shorter --time", usize::MAX)
+        format!("more than any --max-steps (at most {}): {shorter}", usize::MAX)
     } else {
-        "simulate a shorter --time (no --max-steps reaches it at that pace)".to_string()
+        format!("{shorter} (no --max-steps reaches it at that pace)")
     };
     format!(
         "{name}: the simulation made its budget of {} (--max-steps) and reached only t = {} of \
-         --time {}{pace}: {advice}",
+         --time {}{pace}{cause}: {advice}",
         Count(steps, "step"),
         significant(t),
         Number(t_end)
@@ -399,7 +425,7 @@ mod tests {
     /// memory.
     #[test]
     fn a_spent_budget_names_the_options() {
-        let m = budget_spent("Engine", 1000, 0.5, 10.0);
+        let m = budget_spent("Engine", 1000, 0.5, 10.0, None);
         for what in ["budget of 1000 steps", "about 20000 steps", "raise --max-steps", "shorter --time"] {
             assert!(m.contains(what), "`{what}` missing: {m}");
         }
@@ -411,10 +437,27 @@ mod tests {
     #[test]
     fn a_span_beyond_any_budget_says_to_shorten_the_time() {
         for t_end in [1e20, 1e308] {
-            let m = budget_spent("Engine", 1_000_000, 102.0, t_end);
+            let m = budget_spent("Engine", 1_000_000, 102.0, t_end, None);
             assert!(m.contains("simulate a shorter --time"), "{t_end}: {m}");
             assert!(!m.contains("raise --max-steps"), "{t_end}: {m}");
         }
-        assert!(budget_spent("Engine", 1_000_000, 102.0, 1e20).contains("about 9.80e23 steps"));
+        assert!(budget_spent("Engine", 1_000_000, 102.0, 1e20, None).contains("about 9.80e23 steps"));
+    }
+
+    /// The turns `--speed` and `--time` imply are named as the cause (1e30 rad for 1 unit:
+    /// 1e30 / 2 pi = 1.59e29, closed form; 1e300 by 1e300 beyond any double, in words); under a
+    /// turn (from rest) they are not, the pace being the machine's own.
+    #[test]
+    fn the_turns_the_speed_implies_are_named() {
+        let mut req = request(2, false);
+        (req.speed, req.time) = (1e30, 1.0);
+        let named = implied_turns(&req);
+        assert_eq!(named.as_deref(), Some("--speed 1e30 over --time 1 is about 1.59e29 turns of the input"));
+        let m = budget_spent("Engine", 1000, 6e-29, 1.0, named);
+        assert!(m.ends_with(": lower --speed or simulate a shorter --time"), "{m}");
+        (req.speed, req.time) = (1e300, 1e300);
+        assert!(implied_turns(&req).is_some_and(|s| s.contains("is more turns than a number holds")));
+        (req.speed, req.time) = (0.0, 1e12);
+        assert_eq!(implied_turns(&req), None);
     }
 }

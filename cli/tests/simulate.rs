@@ -130,6 +130,22 @@ fn simulate_s_step_budget_is_an_option_that_bounds_the_run() {
         assert_eq!(out.status.code(), Some(2), "--time {time}: {err}");
         assert!(err.contains("budget of 1000 steps") && err.contains(&format!("of --time {written}")), "{err}");
     }
+    // A speed that makes the span more steps than any budget: the message names the turns the
+    // speed and the time imply (1e30 rad per unit for 1 unit: 1e30 / 2 pi = 1.59e29 turns,
+    // closed form) as the cause, and both remedies, not raising the budget.
+    let out = kinloop(&["simulate", engine.as_str(), "--speed", "1e30", "--time", "1", "--max-steps", "1000"]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    let cause = "--speed 1e30 over --time 1 is about 1.59e29 turns of the input";
+    for what in [cause, "more than any --max-steps", "lower --speed", "shorter --time"] {
+        assert!(err.contains(what), "`{what}` missing: {err}");
+    }
+    assert!(!err.contains("raise --max-steps"), "{err}");
+    // A long time at an ordinary speed: the turns named too, and every remedy.
+    let err = stderr(&run(&["--time", "1e12", "--max-steps", "1000"]));
+    for what in ["--speed 150 over --time 1000000000000 is about 2.39e13 turns", "raise --max-steps, lower --speed"] {
+        assert!(err.contains(what), "`{what}` missing: {err}");
+    }
     // A budget the run fits in: the same table as the default's.
     let fits = run(&["--time", "0.2", "--samples", "11"]);
     assert!(fits.status.success(), "{}", stderr(&fits));
