@@ -165,6 +165,82 @@ fn not_a_number(line: usize, field: &str, column: &str) -> io::Error {
     io::Error::new(io::ErrorKind::InvalidData, message)
 }
 
+/// A reader that notes where the lines of what it reads end, so that an error can name the
+/// line of a byte offset as an editor numbers it: the csv crate's own line count of a record
+/// does not count the blank lines before it (a field on line 6 after blank lines 2, 4 and 5
+/// was on its "line 4").
+/// Eight bytes a line, against the eight of every number of the table read.
+struct Lines<R> {
+    inner: R,
+    /// The bytes read so far.
+    read: u64,
+    /// The offsets of the newlines read so far, in order.
+    ends: Vec<u64>,
+}
+
+impl<R> Lines<R> {
+    fn new(inner: R) -> Self {
+        Lines { inner, read: 0, ends: Vec::new() }
+    }
+
+    /// The line (from 1) that the byte at `offset` is on, among those read.
+    fn line_of(&self, offset: u64) -> u64 {
+        self.ends.partition_point(|&end| end < offset) as u64 + 1
+    }
+}
+
+impl<R: io::Read> io::Read for Lines<R> {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        let at = self.read;
+        self.ends.extend(buf[..n].iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(k, _)| at + k as u64));
+        self.read += n as u64;
+        Ok(n)
+    }
+}
+
+/// What is wrong with a row read: its length, or its field `k` (not UTF-8, or not a number).
+enum BadRow {
+    Length,
+    Field(usize),
+}
+
+/// The numbers of `record`, a row under a header of `columns` columns.
+fn parse_row(record: &csv::ByteRecord, columns: usize) -> Result<Vec<f64>, BadRow> {
+    if record.len() != columns {
+        return Err(BadRow::Length);
+    }
+    let number = |bytes: &[u8]| std::str::from_utf8(bytes).ok()?.trim().parse::<f64>().ok();
+    record.iter().enumerate().map(|(k, field)| number(field).ok_or(BadRow::Field(k))).collect()
+}
+
+/// The error of `record`, a row that is `bad`, named by the line in the file its bad field (or,
+/// for a length, the row) starts on: counted back from the record's last line `last` by the
+/// newlines of the quoted fields from there on. (From the end, not the start: the position the
+/// csv crate gives a record is the end of the one before, blank lines between included.)
+#[cold]
+fn bad_row(record: &csv::ByteRecord, bad: BadRow, last: u64, columns: &[String]) -> io::Error {
+    let newlines = |k: usize| record.iter().skip(k).map(|f| f.iter().filter(|b| **b == b'\n').count() as u64).sum();
+    let line_from = |k: usize| usize::try_from(last.saturating_sub(newlines(k))).unwrap_or(usize::MAX);
+    let k = match bad {
+        BadRow::Field(k) => k,
+        BadRow::Length => {
+            let (line, len, n) = (line_from(0), record.len(), columns.len());
+            let values = if len == 1 { "value" } else { "values" };
+            let message = format!("CSV line {line}: a row of {len} {values} under a header of {n} columns");
+            return io::Error::new(io::ErrorKind::InvalidData, message);
+        }
+    };
+    let column = columns.get(k).map_or("?", String::as_str);
+    match std::str::from_utf8(record.get(k).unwrap_or_default()) {
+        Ok(field) => not_a_number(line_from(k), field, column),
+        Err(_) => io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("CSV line {}: column `{column}` holds text that is not UTF-8", line_from(k)),
+        ),
+    }
+}
+
 /// The CSV of a table of no columns: nothing, for no rows (which reads back as that table),
 /// and for `rows` rows an `InvalidInput` error. CSV has no line for a row of no values: the
 /// csv crate writes a record of none as `""`, one empty field, which would read back as a
@@ -403,6 +479,7 @@ impl Table {
     /// them). Header fields are trimmed as numbers are (`phi, x` has a column `x`). Errors are
     /// `InvalidData`: a field that is not a number (naming its line and column, and what it
     /// holds or that it is empty), a row of another length than the header (naming its line),
+    /// each line numbered as in the file (blank lines and the lines of quoted fields counted),
     /// a column name that appears twice (naming it), or text that is not UTF-8.
     ///
     /// A table holds numbers alone: a file with a column of text is refused at its first row,
@@ -413,19 +490,22 @@ impl Table {
     /// extremes of `kinloop extremes` (`column` and `unit`). Read them with a CSV reader (the
     /// `csv` crate, a spreadsheet).
     pub fn read_csv(r: impl io::Read) -> io::Result<Table> {
-        let mut input = csv::ReaderBuilder::new().has_headers(true).from_reader(r);
+        // Flexible: a ragged row is refused below, by its line in the file.
+        let mut input = csv::ReaderBuilder::new().has_headers(true).flexible(true).from_reader(Lines::new(r));
         let header = input.headers().map_err(csv_error)?;
         let (columns, units): (Vec<String>, Vec<String>) = header.iter().map(table_units::read_header).unzip();
         check_distinct(&columns)?;
         let mut t = Table { columns, rows: Vec::new(), units };
-        for (line, record) in input.records().enumerate() {
-            let record = record.map_err(csv_error)?;
-            let line = line + 2;
-            let row = record.iter().enumerate().map(|(k, field)| {
-                let column = t.columns.get(k).map_or("?", String::as_str);
-                field.trim().parse::<f64>().map_err(|_| not_a_number(line, field, column))
-            });
-            t.rows.push(row.collect::<io::Result<Vec<f64>>>()?);
+        let mut record = csv::ByteRecord::new();
+        while input.read_byte_record(&mut record).map_err(csv_error)? {
+            match parse_row(&record, t.columns.len()) {
+                Ok(values) => t.rows.push(values),
+                Err(bad) => {
+                    // The reader stands just past the record's end: its last byte is on its last line.
+                    let last = input.get_ref().line_of(input.position().byte().saturating_sub(1));
+                    return Err(bad_row(&record, bad, last, &t.columns));
+                }
+            }
         }
         Ok(t)
     }
