@@ -154,7 +154,8 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// angles, a motion law). `guess` at the first input picks the assembly mode. The first error
     /// stops it; the result keeps the states before it, says why and where it stopped (a limit
     /// position between two inputs is located as in a sweep) and lists the events met
-    /// ([`SweepResult::into_result`] for `?`).
+    /// ([`SweepResult::into_result`] for `?`). An angle parameter too large to resolve
+    /// ([`Mechanism::check_param_angles`]) stops it before the first input.
     fn sweep_at<I: Into<Self::Inputs>>(
         &self,
         inputs: impl IntoIterator<Item = I>,

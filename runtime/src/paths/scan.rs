@@ -10,8 +10,9 @@
 //! stealing and returns bitwise the same results in the same order.
 //!
 //! Each set succeeds or fails on its own: a parameter set that cannot be assembled, that meets a
-//! limit position before the end of the range, or whose parameters are not finite gives an
-//! [`Error`] in its slot and the others go on. A set whose sweep fails at any sample yields that
+//! limit position before the end of the range, whose parameters are not finite, or whose angle
+//! parameter is too large to resolve ([`Mechanism::check_param_angles`], checked once a set)
+//! gives an [`Error`] in its slot and the others go on. A set whose sweep fails at any sample yields that
 //! error, not the fold of the samples before it.
 //!
 //! One set's sweep and fold is written once, over any [`Kernel`] ([`fold_sweep_of`]): a run-time
