@@ -22,6 +22,7 @@
 //! Whatever does not follow from the classified leaves is [`Kind::Other`]: nothing is guessed.
 
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
+use crate::graph::dims::{Dim, dimensions};
 use crate::semantics::model::{Model, Named};
 use std::collections::{HashMap, HashSet};
 
@@ -54,9 +55,9 @@ pub fn classify(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeI
     let params = (0..model.params.len()).map(|k| of(Leaf::Param(k as u16))).collect();
     let n_point_columns = 2 * model.points.len();
     let scalars = &outputs[n_point_columns.min(outputs.len())..];
-    let dims = dimensions(g, scalars, &of);
+    let dims = dimensions(g, scalars, &|l| dim(of(l)));
     let mut out = vec![Kind::Length; n_point_columns];
-    out.extend(scalars.iter().map(|s| dims[s].kind()));
+    out.extend(scalars.iter().map(|s| kind(dims[s])));
     Kinds { inputs, unknowns, outputs: out, params }
 }
 
@@ -97,7 +98,7 @@ fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]
         // own keeps it (`y + phi` with `y` a length: the sum is nothing kinloop names, and `y`
         // stays a length).
         let of = |l: Leaf| kinds.get(&l).copied().flatten().unwrap_or(Kind::Other);
-        let dims = dimensions(g, &roots, &of);
+        let dims = dimensions(g, &roots, &|l| dim(of(l)));
         for n in g.reachable(&roots) {
             let pair = match g.op(n) {
                 Op::Add(a, b) | Op::Sub(a, b) | Op::Select(a, b, _, _) => [a, b],
@@ -170,106 +171,23 @@ pub(crate) fn pure_number(g: &Graph, n: NodeId, depth: u32) -> bool {
     }
 }
 
-/// The dimension of an expression: a number, an angle, a power of length, or unknown.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Dim {
-    Num,
-    Angle,
-    L(i32),
-    Other,
-}
-
-impl Dim {
-    fn kind(self) -> Kind {
-        match self {
-            Dim::Angle => Kind::Angle,
-            Dim::L(1) => Kind::Length,
-            Dim::Num | Dim::L(0) => Kind::Dimensionless,
-            _ => Kind::Other,
-        }
-    }
-
-    /// The power of length in a product (an angle is a pure number there).
-    fn power(self) -> Option<i32> {
-        match self {
-            Dim::Num | Dim::Angle => Some(0),
-            Dim::L(k) => Some(k),
-            Dim::Other => None,
-        }
-    }
-
-    /// Dimensionless (a number, an angle or `L^0`): a valid argument of `exp`, `asin`, ...
-    fn unitless(self) -> bool {
-        self.power() == Some(0)
+/// The kind of an expression of dimension `d`.
+fn kind(d: Dim) -> Kind {
+    match d {
+        Dim::Angle => Kind::Angle,
+        Dim::L(1) => Kind::Length,
+        Dim::Num | Dim::L(0) => Kind::Dimensionless,
+        _ => Kind::Other,
     }
 }
 
-/// The dimension of every node reachable from `roots`, bottom-up.
-fn dimensions(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Kind) -> HashMap<NodeId, Dim> {
-    let mut dim: HashMap<NodeId, Dim> = HashMap::new();
-    // Ids are a topological order: operands come first.
-    for n in g.reachable(roots) {
-        let d = |a: NodeId| dim[&a];
-        let v = match g.op(n) {
-            Op::Const(_) => Dim::Num,
-            Op::Leaf(l) => match leaf(l) {
-                Kind::Angle => Dim::Angle,
-                Kind::Length => Dim::L(1),
-                Kind::Dimensionless => Dim::L(0),
-                Kind::Other => Dim::Other,
-            },
-            Op::Add(a, b) | Op::Sub(a, b) => sum(d(a), d(b)),
-            Op::Neg(a) | Op::Func(Func::Abs | Func::Floor, a) => d(a),
-            Op::Mul(a, b) => product(d(a), d(b), 1),
-            Op::Div(a, b) => product(d(a), d(b), -1),
-            Op::Powi(a, k) => match d(a) {
-                Dim::Num => Dim::Num,
-                Dim::Angle if k == 1 => Dim::Angle,
-                Dim::L(p) => p.checked_mul(k).map_or(Dim::Other, Dim::L),
-                _ => Dim::Other,
-            },
-            Op::Func(Func::Sqrt, a) => match d(a) {
-                Dim::Num => Dim::Num,
-                Dim::L(p) if p % 2 == 0 => Dim::L(p / 2),
-                _ => Dim::Other,
-            },
-            Op::Func(Func::Signum, _) => Dim::Num,
-            Op::Func(Func::Asin | Func::Acos | Func::Atan, a) if d(a).unitless() => Dim::Angle,
-            Op::Func(_, a) if d(a).unitless() => Dim::L(0),
-            Op::Atan2(y, x) if sum(d(y), d(x)) != Dim::Other => Dim::Angle,
-            // As a sum: the compared arguments of one kind (an angle against a length is not
-            // inferred), and the result the kind of the chosen operands.
-            Op::Select(a, b, x, y) if sum(d(a), d(b)) != Dim::Other => sum(d(x), d(y)),
-            _ => Dim::Other,
-        };
-        dim.insert(n, v);
-    }
-    dim
-}
-
-/// The dimension of a sum: both terms alike (a number adopts the other's).
-fn sum(a: Dim, b: Dim) -> Dim {
-    match (a, b) {
-        (Dim::Num, x) | (x, Dim::Num) => x,
-        (x, y) if x == y => x,
-        _ => Dim::Other,
-    }
-}
-
-/// The dimension of `a * b^sign` (`sign` = 1 or -1).
-fn product(a: Dim, b: Dim, sign: i32) -> Dim {
-    match (a, b) {
-        (x, Dim::Num) => x,
-        (Dim::Num, Dim::Angle) if sign == 1 => Dim::Angle,
-        // Per radian, a squared angle, an angle times a ratio: no unit kinloop writes (an angle
-        // times a length is an arc length).
-        (_, Dim::Angle) if sign == -1 => Dim::Other,
-        (Dim::Angle | Dim::Num | Dim::L(0), Dim::Angle) | (Dim::Angle, Dim::L(0)) => Dim::Other,
-        // Checked: a declaration may raise a length to any power.
-        _ => match (a.power(), b.power()) {
-            (Some(p), Some(q)) => q.checked_mul(sign).and_then(|q| p.checked_add(q)).map_or(Dim::Other, Dim::L),
-            _ => Dim::Other,
-        },
+/// The dimension of a leaf of kind `k`.
+fn dim(k: Kind) -> Dim {
+    match k {
+        Kind::Angle => Dim::Angle,
+        Kind::Length => Dim::L(1),
+        Kind::Dimensionless => Dim::L(0),
+        Kind::Other => Dim::Other,
     }
 }
 
