@@ -798,6 +798,9 @@ fn a_misspelt_option_gets_the_option() {
         ("#[kinloop(newtn)]", "newton"),
         ("#[kinloop(sensitivites)]", "sensitivities"),
         ("#[kinloop(dense, nweton)]", "newton"),
+        // Three edits, but a third of a long word: the singular of the option.
+        ("#[kinloop(sensitivity)]", "sensitivities"),
+        ("#[kinloop(sensitiv)]", "sensitivities"),
     ] {
         let e = decl(attr);
         assert_eq!(e.len(), 1, "{attr}: {e:#?}");

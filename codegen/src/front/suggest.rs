@@ -1,9 +1,12 @@
 //! Did-you-mean suggestions for misspelt names.
 
-/// Suggests a candidate close to a misspelt name (at most 2 edits, a swap of neighbours
-/// counting as one), or one that differs in case alone. The nearest ignoring case comes first,
-/// so that `Sin` is `sin` and not `min` (both one edit away) and `PI` is `pi`; then the nearest
-/// as written; ties are broken by name so the message is deterministic.
+/// Suggests a candidate close to a misspelt name, or one that differs in case alone. Close is
+/// at most 2 edits (a swap of neighbours counting as one), or a third of the name's length for
+/// a long name (`sensitivity` is 3 edits from `sensitivities`), or a candidate the name begins
+/// when it has 4 letters or more and at least half the candidate's (`sensitiv`). A short name
+/// is never close to a long candidate it is only the start of. The nearest ignoring case
+/// comes first, so that `Sin` is `sin` and not `min` (both one edit away) and `PI` is `pi`;
+/// then the nearest as written; ties are broken by name so the message is deterministic.
 pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> Option<&'a String> {
     // The distance is quadratic in the lengths: long names get no suggestion.
     const LONGEST: usize = 64;
@@ -14,9 +17,19 @@ pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> 
     candidates
         .filter(|c| c.chars().count() <= LONGEST)
         .map(|c| (edit_distance(name, c), edit_distance(&lower, &c.to_lowercase()), c))
-        .filter(|(d, folded, c)| *folded == 0 || (*d <= 2 && *d < c.chars().count().max(name.chars().count())))
+        .filter(|(d, folded, c)| *folded == 0 || close(&lower, &c.to_lowercase(), *folded.min(d)))
         .min_by(|a, b| a.1.cmp(&b.1).then_with(|| a.0.cmp(&b.0)).then_with(|| a.2.cmp(b.2)))
         .map(|(_, _, c)| c)
+}
+
+/// Whether `candidate`, `distance` edits from `name` (both in lower case), is close enough to
+/// suggest (see [`similar`]).
+fn close(name: &str, candidate: &str, distance: usize) -> bool {
+    let (n, c) = (name.chars().count(), candidate.chars().count());
+    // A one-letter name is not "close" to another one-letter name: every edit is the word.
+    let near = distance <= (n / 3).max(2) && distance < n.max(c);
+    let start = n >= 4 && 2 * n >= c && candidate.starts_with(name);
+    near || start
 }
 
 /// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
@@ -53,6 +66,8 @@ mod tests {
         assert_eq!(edit_distance("kitten", "sitting"), 3);
         assert_eq!(edit_distance("ab", "ba"), 1, "a swap of neighbours is one edit");
         assert_eq!(edit_distance("psi", "psi"), 0);
+        // y -> i, then e and s added.
+        assert_eq!(edit_distance("sensitivity", "sensitivities"), 3);
     }
 
     #[test]
@@ -65,6 +80,16 @@ mod tests {
         // A difference of case is closer than a different letter: `Sin` is `sin`, not `min`.
         let functions: Vec<String> = ["min", "sin"].iter().map(|s| s.to_string()).collect();
         assert_eq!(similar("Sin", functions.iter()).map(String::as_str), Some("sin"));
+        // A long name is close at more edits, and a name the start of a candidate is close:
+        // `sensitivity` (3 edits, 11 letters) and `sensitiv` are `sensitivities`; short words
+        // are not, at 3 edits or as the start of a long word.
+        let options: Vec<String> = ["dense", "newton", "sensitivities"].iter().map(|s| s.to_string()).collect();
+        for long in ["sensitivity", "sensitiv", "Sensitivity"] {
+            assert_eq!(similar(long, options.iter()).map(String::as_str), Some("sensitivities"), "{long}");
+        }
+        for short in ["sen", "new", "ds", "fast", "sent", "newtonian_solver"] {
+            assert_eq!(similar(short, options.iter()), None, "{short}");
+        }
         // A one-letter name is never "close" to another one-letter name.
         let short: Vec<String> = vec!["a".into()];
         assert_eq!(similar("b", short.iter()), None);
