@@ -38,8 +38,15 @@
 //!   the same reason a loop, which adds lengths, refuses such an angle (or a value written in
 //!   degrees) as a coordinate of one of its vectors, `(x, phi)`: write a length there,
 //!   `(x, r * phi)`. So do the other positions: a `point`, a vector `let` that a loop or point
-//!   uses, the point a force acts at and a centre of mass. A force's value and gravity are no
-//!   positions, and a vector scaled by a length, `r * (phi, 0)`, has lengths for coordinates.
+//!   uses, the point a force acts at and a centre of mass. A coordinate is judged by what its
+//!   expression is, not by how it is written: an angle offset by a number or by another angle,
+//!   a multiple of one by a number (`(x, 2 * phi)`), a scalar `let` of one, `dot` of an
+//!   angle's vector and a direction, and an angle scaling a direction (`phi * (0, 1)`) are
+//!   angles there too; a length times an angle (`r * phi`, `l * dot((phi, 0), u)`) or a sine
+//!   of one is not. The vectors `dot`, `cross`, `norm` and `angle` take are no positions
+//!   themselves (`rot` gives its vector back turned, a position still). A force's value and
+//!   gravity are no positions, and a vector scaled by a length, `r * (phi, 0)`, has lengths for
+//!   coordinates.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

@@ -784,6 +784,77 @@ fn an_angle_as_a_coordinate_of_a_point_is_a_unit_mix() {
     }
 }
 
+/// A coordinate of a position is judged by the kind of its expression, not by how it is
+/// written: an angle offset by a number or by an angle, a multiple of one by a number, a scalar
+/// `let` of one, the dot product of a vector of angles with a direction, and an angle scaling a
+/// direction all compiled into positions whose values changed with the unit of length. The
+/// arguments of `dot` are no positions themselves: a length times such a product is a length.
+#[test]
+fn an_angle_computed_as_a_coordinate_is_a_unit_mix() {
+    let head = "params r, l, m, e0 = deg(3); input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for (body, shown, from, place) in [
+        ("point p = (x, phi + 0.0);", "phi + 0.0", "phi", "a point"),
+        ("point p = (2.0 * phi, x);", "2.0 * phi", "phi", "a point"),
+        ("point p = (x, e0 - 0.5 * psi);", "e0 - 0.5 * psi", "psi", "a point"),
+        ("let a = phi / 2; point p = (x, a);", "a", "phi", "a point"),
+        ("let a = phi; point p = (x, a);", "a", "phi", "a point"),
+        ("point p = (x, 0) + (dot((psi, 0), (1, 0)), 0);", "dot((psi, 0), (1, 0))", "psi", "a point"),
+        ("point p = (x, 0) + psi * (0, 1);", "psi", "", "a point"),
+        ("point p = (x, wrap(phi, 2 * pi));", "wrap(phi, 2 * pi)", "phi", "a point"),
+        (
+            "loop d: (x, cross((0, 1), (psi, 0))) == (x, 0) + r @ psi;",
+            "cross((0, 1), (psi, 0))",
+            "psi",
+            "a vector in a loop",
+        ),
+        ("body b: mass m, com (x, 2 * psi);", "2 * psi", "psi", "a centre of mass"),
+        ("force f at (min(phi, psi), x) = (1, 0);", "min(phi, psi)", "phi", "the point a force acts at"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        let why = if from.is_empty() { String::new() } else { format!("made from `{from}`, an angle: ") };
+        assert!(e[0].starts_with(&format!("`{shown}` is an angle ({why}")), "{body}: {e:#?}");
+        assert!(e[0].contains(&format!("but here it is a coordinate of {place}")), "{body}: {e:#?}");
+    }
+    // Lengths made from angles (a rolled arc, a length times a dot product of angles), numbers
+    // of an angle (a sine), a sum of a name of no known kind and an angle, and an angle that is
+    // no position (a norm, a force's value) stay as written.
+    for body in [
+        "point p = (x, 0) + l * (phi, 0) + phi * (l, 0) + (r * phi + x, sin(phi));",
+        "point p = (l * dot((phi, 0), (1, 0)), x);",
+        "point p = (x, cross((0, l), (psi, 0)));",
+        "point p = (m + psi, x);",
+        "output w = norm((phi, psi)); point p = (x, min(l, r));",
+        "force f at (x, 0) = (2 * psi, 0);",
+        "eq d: x == r * cos(phi) + dot((phi, psi), (0, 0)) + sqrt(l ^ 2 - (r * sin(phi)) ^ 2);",
+    ] {
+        let src = format!(
+            "pub struct S {{ params r, l, m; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; {body} }}"
+        );
+        let e = errors(&src);
+        assert!(e.iter().all(|m| !m.contains("is an angle")), "{body}: {e:#?}");
+    }
+}
+
+/// A vector `let` of an angle that a point and a centre of mass (or a force's point) both use
+/// is one mistake, reported once at its coordinate: the dynamics said it again of the centre of
+/// mass, and for an input told to declare the point.
+#[test]
+fn an_angle_in_a_let_of_a_point_and_a_mass_is_reported_once() {
+    let head = "params r, l, m; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for body in [
+        "let v = (x, psi); point p = v; body b: mass m, com v;",
+        "let v = (x, psi); body b: mass m, com v;",
+        "let v = (x, phi); body b: mass m, com v;",
+        "let v = (x, psi); point p = v; force f at v = (1, 0);",
+        "let v = (x, psi); body b: mass m, com v; force f at v = (1, 0);",
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        assert!(e[0].contains("but here it is a coordinate of `v`, a vector that"), "{body}: {e:#?}");
+    }
+}
+
 /// A misspelt option, or a misspelt `kinloop` before it, gets the word meant, as a misspelt
 /// item keyword does; a word like none of them gets the list alone.
 #[test]

@@ -36,7 +36,13 @@ impl Lowerer {
             self.errors.push(wrong_arity(builtin, args, close));
             return None;
         }
+        // The vectors a function takes are no positions (`dot(u, v)` multiplies them, `norm`
+        // measures one): the value it gives is judged where it is written. `rot` gives its
+        // vector back turned, a position still.
+        let positions = if builtin.lowering == Lowering::Rot { self.lengths.clone() } else { None };
+        let outer = std::mem::replace(&mut self.lengths, positions);
         let vals: Vec<Option<Val>> = args.iter().map(|a| self.lower(a)).collect();
+        self.lengths = outer;
         let vals: Vec<Val> = vals.into_iter().collect::<Option<_>>()?;
         let mut ok = true;
         for ((v, a), (_, want)) in vals.iter().zip(args).zip(builtin.args) {

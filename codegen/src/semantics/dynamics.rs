@@ -295,7 +295,7 @@ impl Pending {
                     _ => None,
                 });
                 let Some(leaf) = angle else { return Some([x, y]) };
-                if written_as_coordinate(lw, leaf) {
+                if [p.x, p.y].iter().any(|n| lw.graph.op(*n) == Op::Leaf(leaf) && lw.refused_positions.contains(n)) {
                     // Refused where it is written as a coordinate, by [`super::polar`].
                     return None;
                 }
@@ -309,16 +309,10 @@ impl Pending {
             // The mass model reads no input (the runtime's `Coord` has no such coordinate): a
             // point that moves with one is declared, and read as the output it then is.
             let input = [p.x, p.y].into_iter().find_map(|n| input_name(lw, n));
-            let angle_input = [p.x, p.y].into_iter().find_map(|n| match lw.graph.op(n) {
-                Op::Leaf(leaf @ Leaf::Input(_)) => Some(leaf),
-                _ => None,
-            });
-            if let Some(leaf) = angle_input
-                && written_as_coordinate(lw, leaf)
-                && *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals))
-            {
-                // An angle input as a coordinate: refused there, with a length to write, by
-                // [`super::polar`]; declaring the point would not mend it.
+            if [p.x, p.y].iter().any(|n| lw.refused_positions.contains(n)) {
+                // An angle as a coordinate (an input, `2 * psi`): refused where it is written,
+                // with a length to write, by [`super::polar`]; declaring the point would not
+                // mend it.
                 return None;
             }
             let why = input.map(|i| format!(", and `{i}` is an input")).unwrap_or_default();
@@ -413,28 +407,18 @@ fn swapped_hint(lw: &Lowerer, leaf: Leaf) -> String {
     }
 }
 
-/// Whether [`super::polar`] refuses `leaf` where it is written bare as a coordinate, if it is
-/// an angle: in a loop or a point (a declared point named here), or, for an input, at this
-/// position too. An angle unknown written at this position is refused here instead.
-fn written_as_coordinate(lw: &Lowerer, leaf: Leaf) -> bool {
-    let checked = |place: &Place| match place {
-        Place::Loop | Place::Point => true,
-        Place::Dynamics(_) => matches!(leaf, Leaf::Input(_)),
-        Place::Let(_) => false,
-    };
-    lw.named_coordinates.iter().any(|c| c.leaf == Some(leaf) && checked(&c.place))
-}
-
 /// The name of the input `n` is, if it is one.
 fn input_name(lw: &Lowerer, n: NodeId) -> Option<String> {
     let Op::Leaf(leaf @ Leaf::Input(_)) = lw.graph.op(n) else { return None };
     leaf_name(lw, leaf)
 }
 
-/// The name of the input or unknown `leaf`.
-fn leaf_name(lw: &Lowerer, leaf: Leaf) -> Option<String> {
+/// The name of the parameter, input or unknown `leaf`.
+pub(super) fn leaf_name(lw: &Lowerer, leaf: Leaf) -> Option<String> {
     let named = |s: &Symbol| match (leaf, s) {
-        (Leaf::Input(i), Symbol::Input(j)) | (Leaf::Unknown(i), Symbol::Unknown(j)) => *j == i,
+        (Leaf::Param(i), Symbol::Param(j))
+        | (Leaf::Input(i), Symbol::Input(j))
+        | (Leaf::Unknown(i), Symbol::Unknown(j)) => *j == i,
         _ => false,
     };
     lw.scope.symbols.iter().find(|(_, (s, _))| named(s)).map(|(k, _)| k.clone())

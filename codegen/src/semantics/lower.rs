@@ -42,6 +42,9 @@ pub struct Lowerer {
     /// The `let`s named while such an item is lowered, with the item: a vector `let` is a
     /// position only where a loop or point (or such a `let`) uses it.
     pub(super) let_uses: Vec<(Place, String)>,
+    /// The coordinates refused as angles by [`super::polar`], checked before the dynamics so
+    /// that a centre of mass or a force's point that has one is not reported again.
+    pub(super) refused_positions: std::collections::HashSet<NodeId>,
     /// The `let`, `point` or `output` whose value is being lowered: a use of its own name
     /// there is a definition in terms of itself, not a definition further down.
     pub(super) defining: Option<String>,
@@ -106,36 +109,57 @@ impl Place {
     }
 }
 
+/// What a noted coordinate is, for the check that it is not an angle.
+#[derive(Clone, Copy, PartialEq)]
+pub(super) enum Coordinate {
+    /// A bare name of a parameter, input or unknown.
+    Name(Leaf),
+    /// A value written in degrees there (`(x, deg(5))`).
+    Degrees,
+    /// Any other expression that varies, lowered to this node (`phi + 0.0`, `2 * phi`, a scalar
+    /// `let`, `dot(u, v)`): judged by its kind, not by how it is written.
+    Expr(NodeId),
+}
+
 /// A coordinate of a Cartesian vector in a `loop`, `point`, `let`, or a position of the
-/// dynamics that is a bare name of a parameter, input or unknown, noted while it is lowered for
-/// the check that the name is not an angle ([`super::polar`]).
+/// dynamics, noted while it is lowered for the check that it is not an angle
+/// ([`super::polar`]).
 pub(super) struct NamedCoordinate {
-    /// The name's leaf; `None` for a value written in degrees there (`(x, deg(5))`).
-    pub(super) leaf: Option<Leaf>,
+    /// What the coordinate is.
+    pub(super) what: Coordinate,
+    /// The coordinate lowered.
+    pub(super) node: NodeId,
     /// The item the vector is written in.
     pub(super) place: Place,
     /// The coordinate as written.
     pub(super) range: SpanRange,
-    /// The name as written.
+    /// The coordinate as written, for the message.
     pub(super) name: String,
-    /// The name as a factor of a product, parenthesised where it is an operation.
+    /// The coordinate as a factor of a product, parenthesised where it is an operation.
     pub(super) factor: String,
 }
 
 impl NamedCoordinate {
-    /// The coordinate `e` (lowered to `n`), if it is a bare name of a parameter, input or
-    /// unknown, or a value written in degrees.
-    fn of(g: &Graph, place: &Place, e: &Expr, n: NodeId) -> Option<Self> {
-        let (place, range) = (place.clone(), e.range());
-        if bare(e).written_in_degrees() {
-            return Some(NamedCoordinate { leaf: None, place, range, name: bare(e).show(), factor: operand(e) });
-        }
-        let Expr::Var(name) = bare(e) else { return None };
-        let leaf = match g.op(n) {
-            Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))) => l,
-            _ => return None,
+    /// The coordinate `e` (lowered to `n`) of a vector in `place`; `None` for a constant, which
+    /// is a length as written. `declared` tells a name of a parameter, input or unknown from a
+    /// `let` that stands for one.
+    fn of(declared: &dyn Fn(&syn::Ident) -> bool, g: &Graph, place: &Place, e: &Expr, n: NodeId) -> Option<Self> {
+        let what = match (bare(e), g.op(n)) {
+            (e, _) if e.written_in_degrees() => Coordinate::Degrees,
+            (Expr::Var(name), Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_)))) if declared(name) => {
+                Coordinate::Name(l)
+            }
+            _ if g.as_const(n).is_some() => return None,
+            _ => Coordinate::Expr(n),
         };
-        Some(NamedCoordinate { leaf: Some(leaf), place, range, name: name.to_string(), factor: name.to_string() })
+        Some(NamedCoordinate {
+            what,
+            node: n,
+            place: place.clone(),
+            range: e.range(),
+            name: bare(e).show(),
+            factor: operand(e),
+        })
     }
 }
 
@@ -212,6 +236,7 @@ impl Lowerer {
             lengths: None,
             named_coordinates: Vec::new(),
             let_uses: Vec::new(),
+            refused_positions: Default::default(),
             defining: None,
             later_uses: Default::default(),
         }
@@ -309,14 +334,8 @@ impl Lowerer {
                 Val::V(x, y) => Val::V(self.graph.neg(x), self.graph.neg(y)),
             },
             Expr::Tuple { x, y, .. } => {
-                let xs = self.lower_component(x);
-                let ys = self.lower_component(y);
-                if let Some(place) = &self.lengths {
-                    for (e, n) in [(x, xs), (y, ys)] {
-                        let noted = n.and_then(|n| NamedCoordinate::of(&self.graph, place, e, n));
-                        self.named_coordinates.extend(noted);
-                    }
-                }
+                let xs = self.lower_coordinate(x);
+                let ys = self.lower_coordinate(y);
                 Val::V(xs?, ys?)
             }
             Expr::Field { base, component, name } => return self.field(base, *component, name),
@@ -326,7 +345,7 @@ impl Lowerer {
                 let between = [self.named_coordinates.len(), self.let_uses.len()];
                 let r = self.lower(rhs);
                 let (l, r) = (l?, r?);
-                self.unnote_scaled(*op, (l, r), (before, between));
+                self.unnote_scaled(*op, (l, r), (before, between), (lhs, rhs));
                 if *op == BinOp::Div && self.is_constant_zero(r) {
                     let divisor = if rhs.is_literal_zero() {
                         String::new()
@@ -349,21 +368,48 @@ impl Lowerer {
     /// A vector times or over a scalar that is not a constant (`l * (phi, 0)`) has coordinates
     /// of that scalar's kind, a length times an angle as `(l * phi, 0)` is: the coordinates and
     /// the `let`s noted in the vector (from `before` to `between` on the left, from `between`
-    /// on the right, counted in both lists) are no longer bare coordinates there.
-    fn unnote_scaled(&mut self, op: BinOp, (l, r): (Val, Val), (before, between): ([usize; 2], [usize; 2])) {
+    /// on the right, counted in both lists) are no longer bare coordinates there. A vector of
+    /// constants (a direction, `(0, 1)`) times such a scalar has the scalar for a coordinate
+    /// (`phi * (0, 1)` is `(0, phi)`): it is noted as one, unless it holds vectors or vector
+    /// `let`s noted themselves.
+    fn unnote_scaled(&mut self, op: BinOp, vals: (Val, Val), counts: ([usize; 2], [usize; 2]), sides: (&Expr, &Expr)) {
+        let (l, r) = vals;
+        let (before, between) = counts;
         let varies = |g: &Graph, v: Val| matches!(v, Val::S(n) if g.as_const(n).is_none());
         if !matches!(op, BinOp::Mul | BinOp::Div) {
             return;
         }
-        let [c, u] = if matches!(l, Val::V(..)) && varies(&self.graph, r) {
-            [before[0]..between[0], before[1]..between[1]]
+        let now = [self.named_coordinates.len(), self.let_uses.len()];
+        let (vector, scalar, [c, u], scalar_noted) = if matches!(l, Val::V(..)) && varies(&self.graph, r) {
+            (l, (r, sides.1), [before[0]..between[0], before[1]..between[1]], now != between)
         } else if matches!(r, Val::V(..)) && varies(&self.graph, l) {
-            [between[0]..self.named_coordinates.len(), between[1]..self.let_uses.len()]
+            (r, (l, sides.0), [between[0]..now[0], between[1]..now[1]], between != before)
         } else {
             return;
         };
         self.named_coordinates.drain(c);
         self.let_uses.drain(u);
+        let constant =
+            matches!(vector, Val::V(x, y) if self.graph.as_const(x).is_some() && self.graph.as_const(y).is_some());
+        if let (BinOp::Mul, true, false, Some(place), (Val::S(n), e)) =
+            (op, constant, scalar_noted, self.lengths.clone(), scalar)
+        {
+            let noted = NamedCoordinate::of(&|id| self.declares_leaf(id), &self.graph, &place, e, n);
+            self.named_coordinates.extend(noted);
+        }
+    }
+
+    /// A coordinate `e` of a vector: lowered, and noted where the vector is a position, unless
+    /// the vectors and vector `let`s it holds were noted themselves (`((phi, 0).x, 0)`, `v.x`).
+    fn lower_coordinate(&mut self, e: &Expr) -> Option<NodeId> {
+        let before = [self.named_coordinates.len(), self.let_uses.len()];
+        let n = self.lower_component(e)?;
+        let inner = [self.named_coordinates.len(), self.let_uses.len()] != before;
+        if let (Some(place), false) = (&self.lengths, inner) {
+            let noted = NamedCoordinate::of(&|id| self.declares_leaf(id), &self.graph, place, e, n);
+            self.named_coordinates.extend(noted);
+        }
+        Some(n)
     }
 
     /// Whether `v` is the scalar constant zero.

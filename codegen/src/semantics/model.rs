@@ -227,8 +227,13 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let residuals: Vec<NodeId> = out.equations.iter().map(|e| e.residual).collect();
     let columns: Vec<NodeId> =
         out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
+    let mut angles = super::polar::Angles::new(&residuals, &columns, in_degrees(&globals));
+    // The coordinates first, so that the dynamics does not report one refused there again; their
+    // errors after the dynamics' and the polar terms', in the order of the checks.
+    let refused = super::polar::coordinates(&mut lw, &mut angles);
     let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals);
-    super::polar::check(&mut lw, &residuals, &columns, &in_degrees(&globals));
+    super::polar::check(&mut lw, &mut angles);
+    refused.into_iter().for_each(|e| lw.errors.push(e));
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.
     let drawing = if lw.errors.is_empty() { super::drawing::model(&mut lw, &items) } else { DrawingModel::default() };
     let unknowns =
@@ -350,7 +355,8 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         }
         ItemKind::Decls(..) => {}
         ItemKind::Let { name, value } => {
-            match lw.lower_in(Place::Let(super::scope::key(name)), |lw| lw.lower_definition(name, value)) {
+            let lowered = lw.lower_in(Place::Let(super::scope::key(name)), |lw| lw.lower_definition(name, value));
+            match lowered {
                 Some(v) => {
                     let plain = name.unraw().to_string();
                     match v {

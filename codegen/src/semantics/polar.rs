@@ -3,40 +3,66 @@
 //! `s`, a mechanism that solves to wrong angles, or not at all, and whose results change with
 //! the unit of length; it is refused at the term, with the swap to write.
 //!
-//! A coordinate of a Cartesian vector that is a bare name of an angle (`(x, phi)`) is refused
-//! too where the vector is a position: in a loop, which adds lengths, a point, the point a
-//! force acts at, a centre of mass, and a vector `let` that one of these uses. A vector scaled
-//! by a quantity that varies (`l * (phi, 0)`) has coordinates of its kind, and is not judged.
+//! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
+//! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
+//! centre of mass, and a vector `let` that one of these uses. A coordinate that is no bare name
+//! is judged by the dimension of its expression ([`crate::graph::dims`]): `phi + 0.0`, `2 * phi`,
+//! a scalar `let` of an angle and `dot((phi, 0), (1, 0))` are angles, `r * phi` and `sin(phi)`
+//! are not. A vector scaled by a quantity that varies (`l * (phi, 0)`) has coordinates of its
+//! kind, and is not judged; a direction scaled so (`phi * (0, 1)`) has the quantity for a
+//! coordinate. The vectors a function takes are no positions (`dot`, `cross`, `norm`, `angle`;
+//! `rot` gives its vector back turned, a position still).
 //!
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
 //! sets it to an angle), or one whose value is written in degrees. A length times an angle
 //! (`(r * phi) @ 0`), a constant, or a name of no known kind stays the length it is written as.
 
-use super::dynamics::is_angle;
-use super::lower::{Lowerer, Place};
-use crate::graph::dag::{Leaf, NodeId};
+use super::dynamics::{is_angle, leaf_name};
+use super::lower::{Coordinate, Lowerer, NamedCoordinate, Place};
+use crate::graph::dag::{Graph, Leaf, NodeId};
+use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
 use std::collections::{HashMap, HashSet};
 
-/// Reports every polar term noted in `lw` whose length is an angle, and every coordinate of a
-/// loop's Cartesian vector that is one. `residuals` and `columns` are the mechanism's equations
-/// and outputs (where an angle is seen to be one); `degrees` the parameters and unknowns whose
-/// values are written in degrees.
-pub(super) fn check(lw: &mut Lowerer, residuals: &[NodeId], columns: &[NodeId], degrees: &[Leaf]) {
-    let terms = std::mem::take(&mut lw.named_lengths);
-    let coordinates = std::mem::take(&mut lw.named_coordinates);
-    if terms.is_empty() && coordinates.is_empty() {
-        return;
+/// The verdicts on which names are angles, shared by the checks of coordinates and of polar
+/// terms: one per name, however many places write it.
+pub(super) struct Angles {
+    /// The mechanism's equations and outputs, where an angle is seen to be one.
+    roots: Vec<NodeId>,
+    residuals: Vec<NodeId>,
+    /// The arguments of the sines and cosines below `roots`, found at the first verdict.
+    arguments: Option<Vec<NodeId>>,
+    /// The parameters and unknowns whose values are written in degrees.
+    degrees: Vec<Leaf>,
+    known: HashMap<Leaf, bool>,
+}
+
+impl Angles {
+    /// `residuals` and `columns` are the mechanism's equations and outputs; `degrees` the
+    /// parameters and unknowns whose values are written in degrees.
+    pub(super) fn new(residuals: &[NodeId], columns: &[NodeId], degrees: Vec<Leaf>) -> Self {
+        let roots = residuals.iter().chain(columns).copied().collect();
+        Angles { roots, residuals: residuals.to_vec(), arguments: None, degrees, known: HashMap::new() }
     }
-    let roots: Vec<NodeId> = residuals.iter().chain(columns).copied().collect();
-    let arguments = multiples::trig_arguments(&lw.graph, &roots);
-    // One verdict per name, however many terms have it as their length.
-    let mut angles: HashMap<Leaf, bool> = HashMap::new();
+
+    /// Why `leaf` (written `name`) is an angle: its value is in degrees, or the mechanism
+    /// makes it one; `None` when it is neither.
+    fn why(&mut self, g: &Graph, leaf: Leaf, name: &str) -> Option<String> {
+        let degrees = self.degrees.contains(&leaf);
+        let (roots, residuals) = (&self.roots, &self.residuals);
+        let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments(g, roots));
+        let known = *self.known.entry(leaf).or_insert_with(|| is_angle(g, leaf, arguments, residuals));
+        why_an_angle(degrees, known, name)
+    }
+}
+
+/// Reports every polar term noted in `lw` whose length is an angle.
+pub(super) fn check(lw: &mut Lowerer, angles: &mut Angles) {
+    let terms = std::mem::take(&mut lw.named_lengths);
     for t in terms {
         let (length, angle) = (&t.length, &t.angle);
-        let known = *angles.entry(t.leaf).or_insert_with(|| is_angle(&lw.graph, t.leaf, &arguments, residuals));
-        let Some(why) = why_an_angle(degrees.contains(&t.leaf), known, length) else { continue };
+        let Some(why) = angles.why(&lw.graph, t.leaf, length) else { continue };
         let fix = if t.constant_angle {
             // `th @ 0`: no length to swap with; an arc rolled by `th` is a radius times it.
             format!("write a length there, such as `r * {length}` for the arc a radius `r` rolls")
@@ -47,35 +73,64 @@ pub(super) fn check(lw: &mut Lowerer, residuals: &[NodeId], columns: &[NodeId], 
             "`{length}` is an angle ({why}), but here it is the length of `@`, which takes `length @ angle`: {fix}"
         )));
     }
-    // A loop adds lengths, and a point is a position: an angle as a coordinate of one of their
-    // vectors (`(x, phi)`) makes a mechanism whose results change with the unit of length.
+}
+
+/// The errors for every coordinate noted in `lw` that is an angle where a position is written
+/// (`(x, phi)`, `(x, 2 * phi)`): a mechanism whose results change with the unit of length. The
+/// nodes refused are noted in `lw.refused_positions`, for the dynamics, which runs before the
+/// errors are reported.
+pub(super) fn coordinates(lw: &mut Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
+    let coordinates = std::mem::take(&mut lw.named_coordinates);
     let positions = lets_taken_as_lengths(&std::mem::take(&mut lw.let_uses));
+    let mut errors = Vec::new();
     for c in coordinates {
         if let Place::Let(l) = &c.place
             && !positions.contains(l)
         {
             continue;
         }
-        if let (Place::Dynamics(_), Some(Leaf::Unknown(_))) = (&c.place, c.leaf) {
+        if let (Place::Dynamics(_), Coordinate::Name(Leaf::Unknown(_))) = (&c.place, c.what) {
             // An angle unknown at a body's or a force's point: refused by the dynamics' check.
             continue;
         }
-        let name = &c.name;
-        let why = match c.leaf {
-            Some(leaf) => {
-                let known = *angles.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
-                why_an_angle(degrees.contains(&leaf), known, name)
-            }
-            // Written in degrees there: `(x, deg(5))`.
-            None => why_an_angle(true, false, name),
-        };
-        let Some(why) = why else { continue };
-        lw.errors.push(c.range.error(format!(
-            "`{name}` is an angle ({why}), but here it is a coordinate of {}: write a length there, such as \
+        let Some((why, node)) = why_coordinate(lw, angles, &c) else { continue };
+        lw.refused_positions.extend(node);
+        errors.push(c.range.error(format!(
+            "`{}` is an angle ({why}), but here it is a coordinate of {}: write a length there, such as \
              `r * {}` for the arc a radius `r` rolls",
+            c.name,
             c.place.describe(),
             c.factor
         )));
+    }
+    errors
+}
+
+/// Why the coordinate `c` is an angle, with its node; `None` when it is not one.
+fn why_coordinate(lw: &Lowerer, angles: &mut Angles, c: &NamedCoordinate) -> Option<(String, Option<NodeId>)> {
+    let g = &lw.graph;
+    match c.what {
+        Coordinate::Name(leaf) => Some((angles.why(g, leaf, &c.name)?, Some(c.node))),
+        // Written in degrees there: `(x, deg(5))`.
+        Coordinate::Degrees => Some((why_an_angle(true, false, &c.name)?, None)),
+        Coordinate::Expr(n) => {
+            // The first leaf that is an angle names why; the kinds of the operations say
+            // whether the whole is one (`2 * phi` is, `r * phi` and `sin(phi)` are not).
+            let mut why = None;
+            let mut found = HashSet::new();
+            for leaf in g.leaves_of(&[n]) {
+                let name = leaf_name(lw, leaf).unwrap_or_default();
+                if let Some(w) = angles.why(g, leaf, &name) {
+                    why.get_or_insert_with(|| format!("made from `{name}`, an angle: {w}"));
+                    found.insert(leaf);
+                }
+            }
+            let of = |l: Leaf| if found.contains(&l) { Dim::Angle } else { Dim::Other };
+            if found.is_empty() || !dims::is_angle(g, n, &of) {
+                return None;
+            }
+            Some((why?, Some(n)))
+        }
     }
 }
 

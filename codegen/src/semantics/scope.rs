@@ -31,6 +31,13 @@ fn describe(s: Symbol) -> &'static str {
 }
 
 impl Lowerer {
+    /// Whether `name` is declared as a parameter, input or unknown (not a `let` that stands
+    /// for one).
+    pub(super) fn declares_leaf(&self, name: &Ident) -> bool {
+        let leaf = |s: &Symbol| matches!(s, Symbol::Param(_) | Symbol::Input(_) | Symbol::Unknown(_));
+        self.scope.symbols.get(&key(name)).is_some_and(|(s, _)| leaf(s))
+    }
+
     /// Reports `name` if it cannot be declared: it is the built-in `pi`, or it names a symbol
     /// already declared that `replaceable` does not accept. Returns whether it was reported.
     fn reject(&mut self, name: &Ident, replaceable: fn(&Symbol) -> bool) -> bool {
@@ -179,7 +186,9 @@ impl Lowerer {
                 Some(Val::S(g.leaf(Leaf::Unknown(*i))))
             }
             Some((Symbol::Let(v), _)) => {
-                if let Some(place) = &self.lengths {
+                // A vector `let` is a position where a position uses it; a scalar one is judged
+                // as the coordinate it is written as.
+                if let (Some(place), Val::V(..)) = (&self.lengths, v) {
                     self.let_uses.push((place.clone(), key));
                 }
                 Some(*v)
