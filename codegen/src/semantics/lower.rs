@@ -42,6 +42,13 @@ pub struct Lowerer {
     /// The `let`s named while such an item is lowered, with the item: a vector `let` is a
     /// position only where a loop or point (or such a `let`) uses it.
     pub(super) let_uses: Vec<(Place, String)>,
+    /// The scalar sums, differences and `eq`s of the items that shape the solution (a `loop`,
+    /// an `eq`, a `let`), for the check that they do not put an angle beside a length
+    /// ([`super::polar`]). A `point`'s or `output`'s sum is a reported value, of no kind
+    /// kinloop names if it is mixed.
+    pub(super) scalar_pairs: Vec<ScalarPair>,
+    /// Set while a `let` is lowered: its sums are noted in `scalar_pairs`, as an equation's are.
+    pub(super) in_let: bool,
     /// The coordinates refused as angles by [`super::polar`], checked before the dynamics so
     /// that a centre of mass or a force's point that has one is not reported again.
     pub(super) refused_positions: std::collections::HashSet<NodeId>,
@@ -81,6 +88,47 @@ impl NamedLength {
         let constant_angle = g.as_const(angle).is_some();
         let term = lhs.range().to(rhs.range());
         Some(NamedLength { leaf, term, length: name.to_string(), angle: operand(rhs), constant_angle })
+    }
+}
+
+/// Two scalars a sum, a difference or an `eq` puts side by side, noted for the check that one
+/// is not an angle where the other is a length ([`super::polar`]).
+pub(super) struct ScalarPair {
+    /// The sum, difference or equation as written.
+    pub(super) range: SpanRange,
+    /// Its source.
+    pub(super) shown: String,
+    /// What it does: "adds", "subtracts", "equates".
+    pub(super) verb: &'static str,
+    /// Each side lowered, with its source.
+    pub(super) sides: [(NodeId, String); 2],
+    /// The source of each side as a factor of a product, parenthesised where it is an operation.
+    pub(super) factors: [String; 2],
+}
+
+impl ScalarPair {
+    /// The pair `lhs`, `rhs` (lowered to `l`, `r`) of the operation `verb` over `range`, unless
+    /// a side is a constant, which is of the other's kind.
+    pub(super) fn of(
+        g: &Graph,
+        range: SpanRange,
+        verb: &'static str,
+        (lhs, rhs): (&Expr, &Expr),
+        l: Val,
+        r: Val,
+    ) -> Option<Self> {
+        let (Val::S(a), Val::S(b)) = (l, r) else { return None };
+        if g.as_const(a).is_some() || g.as_const(b).is_some() {
+            return None;
+        }
+        let factors = [operand(lhs), operand(rhs)];
+        let (lhs, rhs) = (bare(lhs).show(), bare(rhs).show());
+        let shown = match verb {
+            "adds" => format!("{lhs} + {rhs}"),
+            "subtracts" => format!("{lhs} - {rhs}"),
+            _ => format!("{lhs} == {rhs}"),
+        };
+        Some(ScalarPair { range, shown: short(&shown), verb, sides: [(a, lhs), (b, rhs)], factors })
     }
 }
 
@@ -237,6 +285,8 @@ impl Lowerer {
             named_coordinates: Vec::new(),
             let_uses: Vec::new(),
             refused_positions: Default::default(),
+            scalar_pairs: Vec::new(),
+            in_let: false,
             defining: None,
             later_uses: Default::default(),
         }
@@ -359,6 +409,15 @@ impl Lowerer {
                     return None;
                 }
                 let res = self.binary(*op, *op_span, (lhs, rhs), l, r)?;
+                let verb = match op {
+                    BinOp::Add => Some("adds"),
+                    BinOp::Sub => Some("subtracts"),
+                    _ => None,
+                };
+                if self.in_equation || self.in_let {
+                    let pair = verb.and_then(|v| ScalarPair::of(&self.graph, e.range(), v, (lhs, rhs), l, r));
+                    self.scalar_pairs.extend(pair);
+                }
                 return self.finite(e.range(), &|| e.show(), &[l, r], res);
             }
             Expr::Call { func, args, close } => return self.call(func, args, *close),

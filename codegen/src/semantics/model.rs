@@ -3,7 +3,7 @@
 
 use super::drawing::DrawingModel;
 use super::dynamics::{DynamicsModel, Pending};
-use super::lower::{Lowerer, Place};
+use super::lower::{Lowerer, Place, ScalarPair};
 use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::syntax::{Decl, DeclKind, Item, ItemKind, MechanismDef, Options};
@@ -234,6 +234,7 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals);
     super::polar::check(&mut lw, &mut angles);
     refused.into_iter().for_each(|e| lw.errors.push(e));
+    super::polar::sums(&mut lw, &mut angles);
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.
     let drawing = if lw.errors.is_empty() { super::drawing::model(&mut lw, &items) } else { DrawingModel::default() };
     let unknowns =
@@ -355,7 +356,9 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         }
         ItemKind::Decls(..) => {}
         ItemKind::Let { name, value } => {
+            lw.in_let = true;
             let lowered = lw.lower_in(Place::Let(super::scope::key(name)), |lw| lw.lower_definition(name, value));
+            lw.in_let = false;
             match lowered {
                 Some(v) => {
                     let plain = name.unraw().to_string();
@@ -447,6 +450,8 @@ fn lower_equation_item(lw: &mut Lowerer, item: &Item, name: &Ident, eq: (&Expr, 
             push(format!("{key}.y"), fy);
         }
         (false, Val::S(a), Val::S(b)) => {
+            let pair = ScalarPair::of(&lw.graph, lhs.range().to(rhs.range()), "equates", (lhs, rhs), l, r);
+            lw.scalar_pairs.extend(pair);
             let f = lw.graph.sides_difference(a, b);
             push(key, f);
         }

@@ -13,13 +13,17 @@
 //! coordinate. The vectors a function takes are no positions (`dot`, `cross`, `norm`, `angle`;
 //! `rot` gives its vector back turned, a position still).
 //!
+//! A scalar sum, difference or `eq` that puts an angle beside a length (`s == phi`, `x + psi`,
+//! with `s` and `x` written elsewhere as coordinates of positions or lengths of `@`) is refused
+//! at the operation: its value too changes with the unit of length.
+//!
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
 //! sets it to an angle), or one whose value is written in degrees. A length times an angle
 //! (`(r * phi) @ 0`), a constant, or a name of no known kind stays the length it is written as.
 
 use super::dynamics::{is_angle, leaf_name};
-use super::lower::{Coordinate, Lowerer, NamedCoordinate, Place};
+use super::lower::{Coordinate, Lowerer, NamedCoordinate, Place, ScalarPair};
 use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
@@ -36,6 +40,9 @@ pub(super) struct Angles {
     /// The parameters and unknowns whose values are written in degrees.
     degrees: Vec<Leaf>,
     known: HashMap<Leaf, bool>,
+    /// The names written bare as a coordinate of a position or as the length of `@` that are
+    /// not angles: lengths, beside which an angle is a unit mix.
+    lengths: HashSet<Leaf>,
 }
 
 impl Angles {
@@ -43,7 +50,14 @@ impl Angles {
     /// parameters and unknowns whose values are written in degrees.
     pub(super) fn new(residuals: &[NodeId], columns: &[NodeId], degrees: Vec<Leaf>) -> Self {
         let roots = residuals.iter().chain(columns).copied().collect();
-        Angles { roots, residuals: residuals.to_vec(), arguments: None, degrees, known: HashMap::new() }
+        Angles {
+            roots,
+            residuals: residuals.to_vec(),
+            arguments: None,
+            degrees,
+            known: HashMap::new(),
+            lengths: HashSet::new(),
+        }
     }
 
     /// Why `leaf` (written `name`) is an angle: its value is in degrees, or the mechanism
@@ -62,7 +76,10 @@ pub(super) fn check(lw: &mut Lowerer, angles: &mut Angles) {
     let terms = std::mem::take(&mut lw.named_lengths);
     for t in terms {
         let (length, angle) = (&t.length, &t.angle);
-        let Some(why) = angles.why(&lw.graph, t.leaf, length) else { continue };
+        let Some(why) = angles.why(&lw.graph, t.leaf, length) else {
+            angles.lengths.insert(t.leaf);
+            continue;
+        };
         let fix = if t.constant_angle {
             // `th @ 0`: no length to swap with; an arc rolled by `th` is a radius times it.
             format!("write a length there, such as `r * {length}` for the arc a radius `r` rolls")
@@ -93,7 +110,12 @@ pub(super) fn coordinates(lw: &mut Lowerer, angles: &mut Angles) -> Vec<syn::Err
             // An angle unknown at a body's or a force's point: refused by the dynamics' check.
             continue;
         }
-        let Some((why, node)) = why_coordinate(lw, angles, &c) else { continue };
+        let Some((why, node)) = why_coordinate(lw, angles, &c) else {
+            if let Coordinate::Name(leaf) = c.what {
+                angles.lengths.insert(leaf);
+            }
+            continue;
+        };
         lw.refused_positions.extend(node);
         errors.push(c.range.error(format!(
             "`{}` is an angle ({why}), but here it is a coordinate of {}: write a length there, such as \
@@ -132,6 +154,59 @@ fn why_coordinate(lw: &Lowerer, angles: &mut Angles, c: &NamedCoordinate) -> Opt
             Some((why?, Some(n)))
         }
     }
+}
+
+/// Reports every scalar sum, difference and `eq` noted in `lw` that puts an angle beside a
+/// length (`eq e: s == phi;` with `s` a slider's travel): its value changes with the unit of
+/// length. Run after [`coordinates`] and [`check`], which find the lengths.
+pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
+    let pairs = std::mem::take(&mut lw.scalar_pairs);
+    if angles.lengths.is_empty() {
+        return;
+    }
+    for p in pairs {
+        if let Some(e) = angle_beside_length(lw, angles, &p) {
+            lw.errors.push(e);
+        }
+    }
+}
+
+/// The error for the pair `p` if one side is an angle and the other a length.
+fn angle_beside_length(lw: &Lowerer, angles: &mut Angles, p: &ScalarPair) -> Option<syn::Error> {
+    let g = &lw.graph;
+    let [(a, _), (b, _)] = p.sides;
+    // Why each angle among the leaves is one, named for the message.
+    let mut reasons: Vec<(Leaf, String, String)> = Vec::new();
+    for leaf in g.leaves_of(&[a, b]) {
+        let name = leaf_name(lw, leaf).unwrap_or_default();
+        if let Some(why) = angles.why(g, leaf, &name) {
+            reasons.push((leaf, name, why));
+        }
+    }
+    let of = |l: Leaf| match () {
+        _ if reasons.iter().any(|r| r.0 == l) => Dim::Angle,
+        _ if angles.lengths.contains(&l) => Dim::L(1),
+        _ => Dim::Other,
+    };
+    let d = dims::dimensions(g, &[a, b], &of);
+    let dim = |n: NodeId| d.get(&n).copied().unwrap_or(Dim::Other);
+    let (angle, length) = match (dim(a), dim(b)) {
+        (Dim::Angle, Dim::L(1)) => (0, 1),
+        (Dim::L(1), Dim::Angle) => (1, 0),
+        _ => return None,
+    };
+    let (node, shown) = &p.sides[angle];
+    // Why the angle is one: its own reason where it is that name, else the first angle it is
+    // made from.
+    let leaves = g.leaves_of(&[*node]);
+    let (_, name, why) = reasons.iter().find(|r| leaves.contains(&r.0))?;
+    let why = if name == shown { why.clone() } else { format!("made from `{name}`, an angle: {why}") };
+    Some(p.range.error(format!(
+        "`{}` {} an angle and a length, so its value would change with the unit of length: `{shown}` is an \
+         angle ({why}), and `{}` a length (a coordinate of a position or the length of `@`); write a length \
+         for the angle, such as `r * {}` for the arc a radius `r` rolls",
+        p.shown, p.verb, p.sides[length].1, p.factors[angle]
+    )))
 }
 
 /// The `let`s that a loop, a point or a position of the dynamics uses, directly or through
