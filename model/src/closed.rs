@@ -15,13 +15,13 @@
 //! [`Build::polar`], [`Build::angle_slider`]), beside the emitter's function of the same name.
 
 use crate::extra::Extra;
-use crate::tape::{Chains, Ins};
+use crate::tape::{Chains, Ins, Segment};
 use kinloop_codegen::graph::dag::{self, Graph, Leaf, NodeId};
 use kinloop_codegen::plan::closed_form::{ClosedForm, constant_norm2};
 use kinloop_runtime::NewtonConfig;
 use kinloop_runtime::generated::{
-    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_d2, dyad_of, dyad_roots,
-    folded_dyad_root_offset, folded_root_offset, half_turn_if, polar_norm, reduce_turn, root_offset_deferred,
+    BlockFailure, acos_on_side, asin_near, check_closed, check_guess, dyad_d2, dyad_of, dyad_roots_in,
+    folded_dyad_root_offset, folded_root_offset_in, half_turn_if, polar_norm, reduce_turn, root_offset_deferred,
     sign_at_guess, unwrap_to_turn,
 };
 use std::collections::HashMap;
@@ -77,7 +77,8 @@ enum Op {
         a: u32,
         g: u32,
     },
-    /// `(cq, sq) = dyad_roots(a, b, c, flip)`.
+    /// `(cq, sq) = dyad_roots_in(a, b, c, flip, terms)`: a form of one angle's, a failure judged
+    /// again in the magnitude of its equation's terms.
     DyadRoots {
         cq: u32,
         sq: u32,
@@ -256,6 +257,11 @@ pub(crate) struct ClosedProg {
     /// The unknowns in the order the solve gives them (the angles, then the length or slider),
     /// each with the register that holds its value after a run (its leaf's when it has one).
     pub(crate) unknowns: Vec<(usize, u32)>,
+    /// For a form solved from one equation of its angle alone, the magnitude of that
+    /// equation's terms (the plan's `terms`): the segment computing it from what the solves
+    /// before the block wrote, and its register. Run only where the root fails, as the
+    /// compiled solve computes it there (`folded_root_offset_in`, `dyad_roots_in`).
+    terms: Option<(Segment, u32)>,
 }
 
 impl ClosedProg {
@@ -318,13 +324,42 @@ impl ClosedProg {
             needs,
             guesses: guesses.unwrap_or(0) as usize,
             unknowns: order.into_iter().zip(placed).collect(),
+            terms: None,
         }
+    }
+
+    /// Gives the program the segment computing the magnitude of its equation's terms into
+    /// register `at` (see `ClosedProg::terms`). The registers a run needs cover the segment's,
+    /// so that the one test of `run` covers what it writes on the cold path.
+    pub(crate) fn with_terms(mut self, seg: Segment, at: u32) -> ClosedProg {
+        self.needs = self.needs.max(seg.needs()).max(at as usize + 1);
+        self.terms = Some((seg, at));
+        self
+    }
+
+    /// The magnitude of the terms of the block's equation (see `ClosedProg::terms`), computed
+    /// from the registers at `p` as the compiled solve computes it, where the root fails (the
+    /// runtime's `folded_root_offset_in`, `dyad_roots_in` call it only there); NaN for a form
+    /// without it, which leaves the failure as it is.
+    ///
+    /// # Safety
+    /// `p` points to at least `self.needs` registers, which nothing else reads or writes
+    /// during the call.
+    #[cold]
+    #[inline(never)]
+    unsafe fn terms_at(&self, p: *mut f64) -> f64 {
+        let Some((seg, at)) = &self.terms else { return f64::NAN };
+        // SAFETY: the caller's: `needs` covers the segment's registers (`with_terms`).
+        let r = unsafe { std::slice::from_raw_parts_mut(p, self.needs) };
+        seg.run(r);
+        r[*at as usize]
     }
 
     /// `RootOffset`'s cold path, where its test fails (registers at `p`: `d2`, the coefficients
     /// `a`, `b`, `c`; `r2` its value): `folded_dyad_root_offset` for a dyad's root (its `d2`
     /// written by a `DyadD2`, every register having one writer), with the residual of one that
-    /// cannot be assembled in its links' lengths; `folded_root_offset` for another. Out of line:
+    /// cannot be assembled in its links' lengths; `folded_root_offset_in` for another (a failure
+    /// judged again in the magnitude of its equation's terms, `ClosedProg::terms_at`). Out of line:
     /// inlined, it took the run's loop 44 instructions a step more on a rhombic drive, which
     /// never comes here.
     ///
@@ -334,7 +369,7 @@ impl ClosedProg {
     #[inline(never)]
     unsafe fn off_range(
         &self,
-        p: *const f64,
+        p: *mut f64,
         [d2, a, b, c]: [u32; 4],
         r2: f64,
         flip: bool,
@@ -348,7 +383,8 @@ impl ClosedProg {
         });
         match links {
             Some(links) => folded_dyad_root_offset(v(d2), r2, v(a), v(b), v(c), links, flip, cfg),
-            None => folded_root_offset(v(d2), r2, v(a), v(b), v(c), flip, cfg),
+            // SAFETY: the caller's.
+            None => folded_root_offset_in(v(d2), r2, v(a), v(b), v(c), flip, cfg, || unsafe { self.terms_at(p) }),
         }
     }
 
@@ -397,7 +433,10 @@ impl ClosedProg {
                     }
                     Op::FlipProduct { flip, a, g } => set(flip, bit((v(a) * reduce_turn(v(g))) < 0.0)),
                     Op::DyadRoots { cq, sq, a, b, c, flip } => {
-                        let (c0, s0) = dyad_roots(v(a), v(b), v(c), flag(flip), cfg)?;
+                        // The magnitude of the equation's terms computed only where the root
+                        // fails, as the compiled solve's.
+                        let terms = move || self.terms_at(p);
+                        let (c0, s0) = dyad_roots_in(v(a), v(b), v(c), flag(flip), cfg, terms)?;
                         set(cq, c0);
                         set(sq, s0);
                     }

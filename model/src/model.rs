@@ -981,7 +981,12 @@ fn position_program(
             let pre = tape.segment(&rec.form.coefficients(), None)?;
             let sin_cos: Vec<[Option<u32>; 2]> = rec.sin_cos.iter().map(|[s, c]| [Some(s.0), Some(c.0)]).collect();
             tape.provide(rec.sin_cos.concat());
-            (pre, How::Closed(ClosedProg::build(&rec.form, g, &sin_cos, extra)))
+            let prog = ClosedProg::build(&rec.form, g, &sin_cos, extra);
+            let prog = match bp.terms {
+                Some(terms) => prog.with_terms(terms_segment(plan, b, terms)?, terms.0),
+                None => prog,
+            };
+            (pre, How::Closed(prog))
         }
         Solve::Newton | Solve::NewtonSparse(_) => {
             // Every unknown of a Newton block is read by its equations: its leaf is in the graph.
@@ -1041,6 +1046,26 @@ fn position_program(
         analog,
         analog_at,
     })
+}
+
+/// The segment computing `terms`, the magnitude of closed-form block `b`'s equation's terms
+/// (the plan's `BlockPlan::terms`), where its root fails: from what the earlier blocks' solves
+/// wrote (their unknowns, a closed form's sines and cosines) and the block's coefficients, the
+/// rest with the operations of the step's own segments (as the position-only tests', see
+/// `crate::levers`), so the value the compiled solve computes there.
+fn terms_segment(plan: &Plan, b: usize, terms: NodeId) -> Result<Segment, crate::tape::Unavailable> {
+    let g = &plan.graph;
+    let mut tape = Builder::new(g);
+    for earlier in &plan.blocks[..b] {
+        tape.provide(earlier.unknowns.iter().filter_map(|&u| g.find(Op::Leaf(Leaf::Unknown(u as u16)))));
+        if let Solve::ClosedForm(r) = &earlier.solve {
+            tape.provide(r.sin_cos.concat());
+        }
+    }
+    if let Solve::ClosedForm(rec) = &plan.blocks[b].solve {
+        tape.provide(rec.form.coefficients());
+    }
+    tape.segment(&[terms], None)
 }
 
 /// Whether a dense Newton block's analogs reuse the factorisation of its final correction:

@@ -588,6 +588,11 @@ impl Segment {
     pub(crate) fn len(&self) -> usize {
         self.ops
     }
+
+    /// One more than the largest register the segment names: the registers a run needs.
+    pub(crate) fn needs(&self) -> usize {
+        self.needs
+    }
 }
 
 /// Chains of steps in one array, each entered by where it starts: the arithmetic of a closed

@@ -16,7 +16,7 @@ use kinloop::NewtonConfig;
 use kinloop::{Mechanism, Sensitivities};
 use kinloop_fixtures as fx;
 use kinloop_model::Model;
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Relative agreement demanded, of each array's largest magnitude.
 const REL: f64 = 1e-15;
@@ -841,4 +841,91 @@ fn a_mechanism_of_extreme_size_keeps_its_assembly_mode_as_the_compiled_one() {
             }
         }
     }
+}
+
+declared! {
+    INCLINED_SLIDER_CRANK_TEXT =>
+    /// A slider-crank on an inclined slide: crank `r` about `(0, h)`, rod `l` from the crank pin
+    /// to the slider `x (u, v)` on the slide through the origin along the unit vector `(u, v)`
+    /// (an angle and a slider in closed form, every coefficient an expression).
+    pub struct InclinedSliderCrank {
+        params r, l, h, u, v;
+        input phi;
+        unknowns psi = 2.0, x = 0;
+        loop ocb: (0, h) + r @ phi == x * (u, v) + l @ psi;
+    }
+}
+
+/// The model against the compiled mechanism at input `x` from `guess`: its positions alone the
+/// compiled `position_flat`'s to the bit, its kinematics the compiled ones (the same state, or
+/// the same error), or both the same error. Returns whether the positions were solved.
+fn step_parity<M, const N: usize, const NI: usize, const NO: usize>(
+    what: &str,
+    compiled: &M,
+    model: &mut Model,
+    x: [f64; NI],
+    guess: [f64; N],
+    cfg: &NewtonConfig,
+) -> bool
+where
+    M: Mechanism<N, NI, NO>,
+{
+    let solved = match (compiled.position_flat(&x, &guess, cfg), model.positions(&x, &guess, cfg).map(<[f64]>::to_vec))
+    {
+        (Ok((c, _)), Ok(m)) => {
+            assert_eq!(c.map(f64::to_bits).to_vec(), m.iter().map(|v| v.to_bits()).collect::<Vec<_>>(), "{what}");
+            true
+        }
+        (Err(c), Err(m)) => {
+            assert_eq!(c, model.explain(&x, &guess, cfg, m), "{what}");
+            false
+        }
+        (c, m) => panic!("{what}: compiled {c:?}, run time {m:?}"),
+    };
+    match (compiled.kinematics_flat(&x, &guess, cfg), model.kinematics(&x, &guess, cfg).map(|s| s.q.clone())) {
+        (Ok(c), Ok(m)) => assert_eq!(c.q.to_vec(), m, "{what}"),
+        (Err(c), Err(m)) => assert_eq!(c, model.explain(&x, &guess, cfg, m), "{what}"),
+        (c, m) => panic!("{what}: compiled kinematics {:?}, run time {m:?}", c.map(|k| k.q)),
+    }
+    solved
+}
+
+/// One-angle closed forms at their limit positions (`tests/errors/limit_of_one_angle.rs` checks
+/// the compiled ones against the construction), closing exactly in decimal in metres,
+/// millimetres and micrometres and missing by 500 times the tolerance, under the default
+/// tolerance and at the rounding floor: the model's verdict is the compiled one's, and so are
+/// its positions and errors (a miss judged in the magnitude of the equation's terms, which both
+/// compute only where the root fails). The offset slider-crank's rod angle is an angle equation
+/// with a folded coefficient (`l sin psi = r sin phi - e`: `r - e = l` at `phi = pi/2`); the
+/// inclined one's an angle and a slider with no coefficient folded (the crank pin `(r, h)` at
+/// `u h - v r = l` from the slide at `phi = 0`).
+#[test]
+fn a_one_angle_limit_is_judged_as_the_compiled_one() {
+    let offset = [[0.406, 0.0003, 0.4057], [406.0, 0.3, 405.7], [406000.0, 300.0, 405700.0]];
+    let inclined = [[0.3, 0.0000012, 0.400002], [300.0, 0.0012, 400.002], [300000.0, 1.2, 400002.0]];
+    let mut solved = 0;
+    for cfg in [NewtonConfig::default(), NewtonConfig::default().with_residual_tol(0.0)] {
+        let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
+        for (k, [r, l, e]) in offset.into_iter().enumerate() {
+            for l in [l, l - 500.0 * tol * (r + e + l)] {
+                let compiled = fx::SliderCrank { r, l, e };
+                let mut model = common::read(fx::SLIDER_CRANK_TEXT);
+                common::set(&mut model, &[("r", r), ("l", l), ("e", e)]);
+                let what = format!("offset, unit {k}, rod {l}, tolerance {:e}", cfg.residual_tol);
+                solved += step_parity(&what, &compiled, &mut model, [FRAC_PI_2], [1.5, 0.0], &cfg) as usize;
+            }
+        }
+        for (k, [r, l, h]) in inclined.into_iter().enumerate() {
+            let (u, v) = (0.6, 0.8);
+            for l in [l, l - 500.0 * tol * (v * (r + l) + u * (h + r + l))] {
+                let compiled = InclinedSliderCrank { r, l, h, u, v };
+                let mut model = common::read(INCLINED_SLIDER_CRANK_TEXT);
+                common::set(&mut model, &[("r", r), ("l", l), ("h", h), ("u", u), ("v", v)]);
+                let what = format!("inclined, unit {k}, rod {l}, tolerance {:e}", cfg.residual_tol);
+                solved += step_parity(&what, &compiled, &mut model, [0.0], [2.0, 0.0], &cfg) as usize;
+            }
+        }
+    }
+    // Every design closing at its limit, none missing it.
+    assert_eq!(solved, 12);
 }

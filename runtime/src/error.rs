@@ -81,8 +81,9 @@ pub enum Error {
     )]
     NoAssembly {
         /// The residual where it stalled, relative to the magnitude of the equation's terms
-        /// (Newton's); for a closed form, the least residual of its equation relative to its
-        /// terms' magnitude there, a dyad's the gap of its links over the sum of its lengths.
+        /// (Newton's); for a closed form, the least residual of its equation relative to the
+        /// magnitude of its terms (a slider-crank's rod angle: the sum of the lengths in its
+        /// projection), a dyad's the gap of its links over the sum of its lengths.
         /// A pure number: the same for the mechanism at every size.
         residual: f64,
         /// The equation with the largest residual.

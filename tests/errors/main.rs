@@ -13,6 +13,7 @@ mod support;
 mod assert_close;
 mod auto_traits;
 mod errors;
+mod limit_of_one_angle;
 mod limit_within_tolerance;
 mod newton_near_limits;
 mod no_silent_wrong_answer;

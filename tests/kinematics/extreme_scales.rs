@@ -897,11 +897,13 @@ fn no_assembly_residual(e: &kinloop::Error) -> f64 {
 /// the pivots' distance, its second coefficient folded to zero): how far its links fall short
 /// of closing the triangle with their centres' distance `|AD|`, over the dyad's size
 /// `b + c + |AD|`. A slider's angle equation (the offset slider-crank whose rod cannot reach
-/// the line at `phi = -1`): `|c| - l` over `|c| + l`, `c` the offset the rod must span. Each
-/// to `SCALE_TOL` of the value derived here at size 1 (the lengths' rounding), at sizes 1,
-/// `1e-100` and `1e100`; each within 2 % of the Newton twin's at the same size, which is the
-/// same gap's component in its worst equation over that equation's magnitude (a frame's
-/// length or a direction's cosine apart: 0.3 % and 1.8 % here). The dyads reported the gap in
+/// the line at `phi = -1`): `|c| - l` over the sum of the lengths in the equation, `r + l + e`,
+/// `c` the offset the rod must span (over `|c| + l`, 1.8 % from Newton's, before its misses
+/// were judged in the magnitude of its terms). Each to `SCALE_TOL` of the value derived here
+/// at size 1 (the lengths' rounding), at sizes 1, `1e-100` and `1e100`; each within 2 % of the
+/// Newton twin's at the same size, which is the same gap's component in its worst equation
+/// over that equation's magnitude (a frame's length apart: 0.3 % here; the slider-crank's the
+/// same measure, 4e-6 apart). The dyads reported the gap in
 /// the units of their coefficients, products of two lengths: 4.08 at size 1 and 4.08e200 at
 /// `1e100` ("the loop residual stalls at 4.08e200"), 3.5 times the size squared for the
 /// cylinder; the slider-crank its gap in lengths, 2.64 times the size.
@@ -916,7 +918,7 @@ fn a_closed_form_that_cannot_be_assembled_reports_a_residual_free_of_its_size() 
     let cylinder_gap = (4.0 - 1.0 - 2.0) / (4.0 + 1.0 + 2.0);
     // The slider-crank: crank 1, rod 3.2, line at 5: `l sin psi = sin(-1) - 5`.
     let offset = ((-1f64).sin() - 5.0).abs();
-    let slider_gap = (offset - 3.2) / (offset + 3.2);
+    let slider_gap = (offset - 3.2) / (1.0 + 3.2 + 5.0);
     for k in [1.0, 1e-100, 1e100] {
         let [a, b, c, d] = crank_too_long(k);
         let (m, twin) = (FourBar { a, b, c, d }, FourBarNewton { a, b, c, d });

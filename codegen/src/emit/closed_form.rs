@@ -50,6 +50,11 @@ pub struct Context<'a> {
     /// nothing. The solve then also binds `__check{block}`, the sum of its sines and cosines and
     /// of the guesses only comparisons read, whose finiteness the kernel's end tests.
     pub deferred: bool,
+    /// For a form solved from one equation of its angle alone (an angle equation, an angle and
+    /// a slider), a closure computing the magnitude of that equation's terms (the plan's
+    /// `BlockPlan::terms`) from the leaves, which the runtime's `folded_root_offset_in` and
+    /// `dyad_roots_in` call only where the root fails, to judge a miss of its limit position.
+    pub terms: Option<TokenStream>,
 }
 
 /// A value of the generated code: a constant known at expansion time or an expression. The
@@ -269,8 +274,12 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: O
                 out.extend(quote!(let __dyad: [f64; 6] = [#a, #b, #e0, #e1, #l0, #l1];));
                 quote!(#f(__dyad, #c, #flip, __cfg))
             }
-            (None, true) => quote!(__mode.dyad_roots(#a, #b, #c, #flip, __cfg)),
-            (None, false) => quote!(#rt::dyad_roots(#a, #b, #c, #flip, __cfg)),
+            (None, deferred) => match (&cx.terms, deferred) {
+                (Some(terms), true) => quote!(__mode.dyad_roots_in(#a, #b, #c, #flip, __cfg, #terms)),
+                (Some(terms), false) => quote!(#rt::dyad_roots_in(#a, #b, #c, #flip, __cfg, #terms)),
+                (None, true) => quote!(__mode.dyad_roots(#a, #b, #c, #flip, __cfg)),
+                (None, false) => quote!(#rt::dyad_roots(#a, #b, #c, #flip, __cfg)),
+            },
         };
         out.extend(quote!(let (__cq, __sq) = #call.map_err(__fail)?;));
         return;
@@ -289,8 +298,14 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: O
             quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, [#e0, #e1, #l0, #l1], #flip, __cfg).map_err(__fail)?;)
         }
         None => {
-            let f = if cx.deferred { quote!(__mode.folded_root_offset) } else { quote!(#rt::folded_root_offset) };
-            quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, #flip, __cfg).map_err(__fail)?;)
+            let f = match (&cx.terms, cx.deferred) {
+                (Some(_), true) => quote!(__mode.folded_root_offset_in),
+                (Some(_), false) => quote!(#rt::folded_root_offset_in),
+                (None, true) => quote!(__mode.folded_root_offset),
+                (None, false) => quote!(#rt::folded_root_offset),
+            };
+            let terms = cx.terms.as_ref().map(|t| quote!(, #t));
+            quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, #flip, __cfg #terms).map_err(__fail)?;)
         }
     };
     let d = local("__d");

@@ -283,6 +283,20 @@ impl Names {
         }
     }
 
+    /// Node `root` as one block expression computing it from the leaves: a `let` of each node
+    /// below it in order (named as [`Names::temp`] names it, shadowing any binding of the same
+    /// node outside, which holds the same value), then `root`. For a value read only on a cold
+    /// path, which no schedule computes beforehand.
+    pub fn standalone(&self, g: &Graph, root: NodeId) -> TokenStream {
+        let lets =
+            g.reachable(&[root]).into_iter().filter(|&n| !matches!(g.op(n), Op::Const(_) | Op::Leaf(_))).map(|n| {
+                let (id, e) = (self.temp(n), self.expr(g, n));
+                quote!(let #id: f64 = #e;)
+            });
+        let value = self.operand(g, root);
+        quote!({ #(#lets)* #value })
+    }
+
     /// `let tN: f64 = ...;` for each node, in order. A sine and a cosine paired by the schedule
     /// become one `sin_cos()` call, at the place of whichever of the two comes first.
     pub fn lets(&self, g: &Graph, sched: &Schedule, nodes: &[NodeId]) -> TokenStream {

@@ -42,6 +42,12 @@ pub struct BlockPlan {
     /// Per block unknown of a Newton block: whether its equations repeat every turn of it
     /// (see [`turns`](super::turns)); all `false` for the other blocks.
     pub turns: Vec<bool>,
+    /// A closed form solved from one equation `a cos q + b sin q = c` of its angle alone (an
+    /// angle equation; an angle and a slider, from the combination of its rows free of the
+    /// slider): the magnitude of the terms that equation is made of, in which a miss of its
+    /// limit position is judged (see [`magnitudes::closed_form_terms`](super::magnitudes)).
+    /// `None` for the other blocks.
+    pub terms: Option<NodeId>,
 }
 
 impl BlockPlan {
@@ -59,6 +65,7 @@ impl BlockPlan {
             col_scale,
             lever_floor: vec![Vec::new(); blk.unknowns.len()],
             turns: vec![false; blk.unknowns.len()],
+            terms: None,
             vel: Vec::new(),
             acc: Vec::new(),
             sens: None,

@@ -51,7 +51,9 @@
 //! loop's lengths is magnified in `th` there.
 
 use super::block_plan::BlockPlan;
+use super::closed_form::ClosedForm;
 use super::kinds;
+use super::solve::Solve;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::{HashMap, HashSet};
 
@@ -399,6 +401,30 @@ impl Magnitudes {
                 out
             })
             .collect()
+    }
+
+    /// The magnitude of the terms of the one equation `a cos q + b sin q = c` a closed form of
+    /// one angle is solved from, built from its rows' magnitudes ([`Magnitudes::block`]'s
+    /// `scale`, which the block's angle leaves out: it appears only in sines and cosines): an
+    /// angle equation's row's; for an angle and a slider, whose equation is the combination
+    /// `d1 f0 - d0 f1` of its rows free of the slider (`d` the slider's coefficients), `M(d1)
+    /// M(f0) + M(d0) M(f1)` with the slider set to zero in each (its terms cancel, they make no
+    /// coefficient). For a slider-crank's rod angle from `e + r sin phi - l sin psi`, the sum
+    /// `|e| + |r| + |l|`: the same number in every unit, as Newton's residual is measured.
+    /// `None` for the other blocks.
+    pub fn closed_form_terms(&mut self, g: &mut Graph, bp: &BlockPlan) -> Option<NodeId> {
+        let Solve::ClosedForm(rec) = &bp.solve else { return None };
+        match rec.form {
+            ClosedForm::AngleEquation { .. } => Some(bp.scale[0]),
+            ClosedForm::AngleSlider { slider, d, .. } => {
+                let zero = g.zero();
+                let free = g.substitute(&bp.scale, &|l| (l == Leaf::Unknown(slider as u16)).then_some(zero));
+                let (m0, m1) = (self.of(g, d[0]), self.of(g, d[1]));
+                let (t0, t1) = (g.mul(m1, free[0]), g.mul(m0, free[1]));
+                Some(g.add(t0, t1))
+            }
+            ClosedForm::Dyad { .. } | ClosedForm::PolarLength { .. } => None,
+        }
     }
 }
 

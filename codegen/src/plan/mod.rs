@@ -126,6 +126,11 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
     // The sines and cosines of the parameter angles that sums of angles are computed from, last:
     // no pass differentiates them.
     crate::graph::angle_sums::provide(&mut g);
+    // The closed forms' terms, read only where a limit position is missed, after every other
+    // node: the temporaries' names stay as they were.
+    for bp in plans.iter_mut() {
+        bp.terms = mags.closed_form_terms(&mut g, bp);
+    }
     let zero = g.zero();
     let guesses = model.unknowns.iter().map(|u| u.value.unwrap_or(zero)).collect();
     let level = levels(&g, &seeds.block_of);

@@ -372,7 +372,10 @@ fn folded_off_range(
 /// both roots meet (its analogs then report the singular position, as Newton's do). Otherwise
 /// the failure of [`no_root`]. Without it whether a mechanism designed to touch its limit
 /// assembles there would depend on the rounding of its dimensions, that is on its units
-/// (`0.1 + 0.2 > 0.3` in metres, `100 + 200 = 300` in millimetres).
+/// (`0.1 + 0.2 > 0.3` in metres, `100 + 200 = 300` in millimetres). That allowance, relative
+/// to `|c|`, is not enough where `c` is a difference of longer terms: a closed form of one angle
+/// judges a failure again in the magnitude of those terms ([`offset_in_terms`]), a dyad in its
+/// lengths ([`dyad_touching`]).
 ///
 /// Where `c²` overflows (a finite `c` beyond about `1.3e154`, with `r2` still finite: a dyad's
 /// coefficients are products of two lengths, so a mechanism near `1e77` in size), both sides of
@@ -399,6 +402,173 @@ fn touching(d2: f64, r2: f64, c: f64, cfg: &NewtonConfig) -> Result<f64, BlockFa
 fn short_within(r2: f64, c: f64, tol: f64) -> bool {
     let x = r2.sqrt() / c.abs();
     (1.0 - x) * (1.0 + x) <= 2.0 * tol
+}
+
+/// [`folded_root_offset`]'s failure `fail` of `a cos q + b sin q = c`, judged again in `size`,
+/// the magnitude of the terms its coefficients are made of (the sum of the loop's lengths in
+/// the equation, as Newton's residual is measured): the offset `0` of the limit position, or the
+/// failure. Called where [`folded_root_offset_in`] or [`dyad_roots_in`] fails, which compute
+/// `size` only there.
+///
+/// [`touching`]'s allowance is relative to `|c|` alone. Where `c` is a difference of terms much
+/// larger than itself (a short rod beside a long crank and offset: `l sin q = e + r sin phi`
+/// with `e` near `-r`), its rounding, a few `eps` of those terms, is many `eps` of `|c|`, and
+/// depends on the unit: a slider-crank closing exactly at its limit in decimal (crank 0.406,
+/// offset -0.4057, rod 0.0003 at `phi = pi/2`) was "cannot be assembled" in metres and
+/// millimetres and a position in micrometres. Here the miss `|c| - sqrt(a² + b²)` is judged
+/// against the residual tolerance (at least `16 eps`) of `size`, the same number in every
+/// unit ([`miss_in_terms`]): within it, the limit position; where every angle closes the
+/// equation within it (`|c| + sqrt(a² + b²)` within it: the angle's lever as short as the
+/// tolerance, the position not determined), singular as [`undetermined`]; otherwise no
+/// assembly with the miss over `size` as residual. A failure other than no assembly, or a
+/// `size` that is not a positive finite number, stays as it is.
+///
+/// ```
+/// use kinloop_runtime::generated::{folded_root_offset, offset_in_terms};
+/// use kinloop_runtime::NewtonConfig;
+/// let cfg = NewtonConfig::default().with_residual_tol(0.0);
+/// // `-l sin q = -(e + r)`: crank 0.406, offset -0.4057, rod 0.0003, closing exactly in decimal.
+/// let (b, c) = (-0.0003, -(-0.4057 + 0.406));
+/// let fail = folded_root_offset(b * b - c * c, b * b, 0.0, b, c, false, &cfg).unwrap_err();
+/// assert_eq!(offset_in_terms(fail, 0.0, b, c, 0.406 + 0.4057 + 0.0003, &cfg), Ok(0.0));
+/// ```
+#[cold]
+#[inline(never)]
+pub fn offset_in_terms(
+    fail: BlockFailure,
+    a: f64,
+    b: f64,
+    c: f64,
+    size: f64,
+    cfg: &NewtonConfig,
+) -> Result<f64, BlockFailure> {
+    let BlockFailure::NoAssembly { row, iterations, evaluations, .. } = fail else { return Err(fail) };
+    let Some((miss, reach)) = miss_in_terms(a, b, c, size) else { return Err(fail) };
+    let tol = cfg.residual_tol.max(16.0 * f64::EPSILON);
+    if miss + 2.0 * reach <= tol {
+        Err(undetermined(cfg))
+    } else if miss <= tol {
+        Ok(0.0)
+    } else {
+        Err(BlockFailure::NoAssembly { row, iterations, evaluations, residual: miss })
+    }
+}
+
+/// [`folded_root_offset`] of a closed form of one angle (an angle equation, an angle and a
+/// slider), its failure judged again in the magnitude of its equation's terms `terms()`
+/// ([`offset_in_terms`]): `terms` is called only there, so the step does no more than
+/// [`folded_root_offset`]'s where the root exists.
+///
+/// ```
+/// use kinloop_runtime::generated::folded_root_offset_in;
+/// use kinloop_runtime::NewtonConfig;
+/// let cfg = NewtonConfig::default().with_residual_tol(0.0);
+/// // `-l sin q = -(e + r)`: crank 0.406, offset -0.4057, rod 0.0003, closing exactly in decimal.
+/// let (b, c) = (-0.0003, -(-0.4057 + 0.406));
+/// let terms = || 0.406 + 0.4057 + 0.0003;
+/// assert_eq!(folded_root_offset_in(b * b - c * c, b * b, 0.0, b, c, false, &cfg, terms), Ok(0.0));
+/// ```
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn folded_root_offset_in(
+    d2: f64,
+    r2: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    flip: bool,
+    cfg: &NewtonConfig,
+    terms: impl FnOnce() -> f64,
+) -> Result<f64, BlockFailure> {
+    if !(d2 >= 0.0 && (f64::MIN_POSITIVE..=f64::MAX).contains(&r2)) {
+        return folded_off_range_in(d2, r2, a, b, c, flip, cfg, terms);
+    }
+    Ok(root_offset_deferred(d2, flip))
+}
+
+/// [`folded_root_offset_in`] where its test fails: [`folded_off_range`], a failure judged again
+/// in `terms()`.
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn folded_off_range_in<F: FnOnce() -> f64>(
+    d2: f64,
+    r2: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    flip: bool,
+    cfg: &NewtonConfig,
+    terms: F,
+) -> Result<f64, BlockFailure> {
+    folded_off_range(d2, r2, a, b, c, flip, cfg).or_else(|f| offset_in_terms(f, a, b, c, terms(), cfg))
+}
+
+/// [`dyad_roots`] of a closed form of one angle with no coefficient folded, its failure judged
+/// again in the magnitude of its equation's terms `terms()` ([`offset_in_terms`]): the same
+/// roots, `terms` called only where [`dyad_roots`] fails.
+#[inline]
+pub fn dyad_roots_in(
+    a: f64,
+    b: f64,
+    c: f64,
+    flip: bool,
+    cfg: &NewtonConfig,
+    terms: impl FnOnce() -> f64,
+) -> Result<(f64, f64), BlockFailure> {
+    let r2 = a * a + b * b;
+    let d2 = r2 - c * c;
+    // `dyad_roots`'s tests, `r2` normal and `d2` not negative (written so that a NaN fails).
+    if !((f64::MIN_POSITIVE..=f64::MAX).contains(&r2) && d2 >= 0.0) {
+        return dyad_roots_off_range_in(a, b, c, flip, cfg, terms);
+    }
+    Ok(roots_of_offset(a, b, c, r2, root_offset_deferred(d2, flip)))
+}
+
+/// [`dyad_roots_in`] where its tests fail: [`dyad_roots`], a failure judged again in `terms()`.
+#[cold]
+#[inline(never)]
+fn dyad_roots_off_range_in<F: FnOnce() -> f64>(
+    a: f64,
+    b: f64,
+    c: f64,
+    flip: bool,
+    cfg: &NewtonConfig,
+    terms: F,
+) -> Result<(f64, f64), BlockFailure> {
+    dyad_roots(a, b, c, flip, cfg).or_else(|f| roots_in_terms(f, a, b, c, terms(), cfg))
+}
+
+/// [`offset_in_terms`] of [`dyad_roots`]'s failure: `(cos q, sin q)` of the limit position,
+/// where the offset is `0` (`c (a, b) / (a² + b²)`, from the equation divided by the power of
+/// two nearest its largest coefficient where `a² + b²` leaves the normal range, as
+/// [`dyad_roots`] rescales), or the failure.
+fn roots_in_terms(
+    fail: BlockFailure,
+    a: f64,
+    b: f64,
+    c: f64,
+    size: f64,
+    cfg: &NewtonConfig,
+) -> Result<(f64, f64), BlockFailure> {
+    let d = offset_in_terms(fail, a, b, c, size, cfg)?;
+    // Reached only with finite coefficients (`miss_in_terms`), not all zero (`|c|` exceeds the
+    // reach): the division is exact and `r2` of order one.
+    let k = reciprocal_power_of_two(a.abs().max(b.abs()).max(c.abs()));
+    let (a, b, c) = (a * k, b * k, c * k);
+    Ok(roots_of_offset(a, b, c, a * a + b * b, d))
+}
+
+/// How far `a cos q + b sin q = c` is from a root where its left side comes nearest `c`, and
+/// how far its left side reaches, both over `size` (the magnitude of the terms the coefficients
+/// are made of): `((|c| - r) / size, r / size)` with `r = sqrt(a² + b²)` (by `hypot`: free of
+/// the overflow of the squares at any size), where `|c| > r`. `None` where that does not hold
+/// or a value is not finite, or `size` is not positive.
+fn miss_in_terms(a: f64, b: f64, c: f64, size: f64) -> Option<(f64, f64)> {
+    let r = a.hypot(b);
+    let finite = a.is_finite() && b.is_finite() && c.is_finite() && size.is_finite();
+    // Written so that a NaN fails.
+    (finite && size > 0.0 && c.abs() > r).then(|| ((c.abs() - r) / size, r / size))
 }
 
 /// `(cos q, sin q)` of the root of `a cos q + b sin q = c` with `h' = -d < 0` (`h = a cos q +

@@ -33,8 +33,9 @@
 //! the values its error needs kept alive.
 
 use super::closed::{
-    check_closed, dyad_of, dyad_of_deferred, dyad_roots, dyad_roots_deferred, folded_dyad_root_offset,
-    folded_root_offset, largest_precise_angle, polar_norm, polar_norm_deferred, root_offset, root_offset_deferred,
+    check_closed, dyad_of, dyad_of_deferred, dyad_roots, dyad_roots_deferred, dyad_roots_in, folded_dyad_root_offset,
+    folded_root_offset, folded_root_offset_in, largest_precise_angle, polar_norm, polar_norm_deferred, root_offset,
+    root_offset_deferred,
 };
 use super::newton::{BlockFailure, NewtonConfig};
 
@@ -99,6 +100,41 @@ impl<const CHECKED: bool> Checks<CHECKED> {
         cfg: &NewtonConfig,
     ) -> Result<f64, BlockFailure> {
         if CHECKED { folded_root_offset(d2, r2, a, b, c, flip, cfg) } else { self.root_offset(d2, r2, c, flip, cfg) }
+    }
+
+    /// [`folded_root_offset_in`], or deferred as [`Checks::root_offset`] (`terms` not called).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn folded_root_offset_in(
+        self,
+        d2: f64,
+        r2: f64,
+        a: f64,
+        b: f64,
+        c: f64,
+        flip: bool,
+        cfg: &NewtonConfig,
+        terms: impl FnOnce() -> f64,
+    ) -> Result<f64, BlockFailure> {
+        if CHECKED {
+            folded_root_offset_in(d2, r2, a, b, c, flip, cfg, terms)
+        } else {
+            self.root_offset(d2, r2, c, flip, cfg)
+        }
+    }
+
+    /// [`dyad_roots_in`], or deferred [`dyad_roots_deferred`] (`terms` not called).
+    #[inline(always)]
+    pub fn dyad_roots_in(
+        self,
+        a: f64,
+        b: f64,
+        c: f64,
+        flip: bool,
+        cfg: &NewtonConfig,
+        terms: impl FnOnce() -> f64,
+    ) -> Result<(f64, f64), BlockFailure> {
+        if CHECKED { dyad_roots_in(a, b, c, flip, cfg, terms) } else { Ok(dyad_roots_deferred(a, b, c, flip)) }
     }
 
     /// [`folded_dyad_root_offset`], or deferred as [`Checks::root_offset`] (as

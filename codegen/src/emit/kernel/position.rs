@@ -267,6 +267,12 @@ impl Kernel<'_> {
             rt: &self.rt,
             trig: self.names.sweep_kernel(),
             deferred: self.deferred,
+            // A `move` closure: it holds `self` and the leaves it reads, passed on the cold
+            // path alone.
+            terms: bp.terms.map(|n| {
+                let value = self.names.standalone(self.g, n);
+                quote!(move || #value)
+            }),
         };
         closed_form::solve(c, &cx)
     }
