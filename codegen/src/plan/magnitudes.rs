@@ -415,12 +415,15 @@ impl Magnitudes {
     pub fn closed_form_terms(&mut self, g: &mut Graph, bp: &BlockPlan) -> Option<NodeId> {
         let Solve::ClosedForm(rec) = &bp.solve else { return None };
         match rec.form {
-            ClosedForm::AngleEquation { .. } => Some(bp.scale[0]),
+            // The rows' magnitudes are there once `block` has run; without them, no size (the
+            // cold path then judges in the equation's own coefficients, as before).
+            ClosedForm::AngleEquation { .. } => bp.scale.first().copied(),
             ClosedForm::AngleSlider { slider, d, .. } => {
                 let zero = g.zero();
                 let free = g.substitute(&bp.scale, &|l| (l == Leaf::Unknown(slider as u16)).then_some(zero));
+                let [f0, f1] = free[..] else { return None };
                 let (m0, m1) = (self.of(g, d[0]), self.of(g, d[1]));
-                let (t0, t1) = (g.mul(m1, free[0]), g.mul(m0, free[1]));
+                let (t0, t1) = (g.mul(m1, f0), g.mul(m0, f1));
                 Some(g.add(t0, t1))
             }
             ClosedForm::Dyad { .. } | ClosedForm::PolarLength { .. } => None,
