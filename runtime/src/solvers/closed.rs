@@ -410,16 +410,16 @@ fn short_within(r2: f64, c: f64, tol: f64) -> bool {
 /// failure. Called where [`folded_root_offset_in`] or [`dyad_roots_in`] fails, which compute
 /// `size` only there.
 ///
-/// [`touching`]'s allowance is relative to `|c|` alone. Where `c` is a difference of terms much
-/// larger than itself (a short rod beside a long crank and offset: `l sin q = e + r sin phi`
-/// with `e` near `-r`), its rounding, a few `eps` of those terms, is many `eps` of `|c|`, and
-/// depends on the unit: a slider-crank closing exactly at its limit in decimal (crank 0.406,
-/// offset -0.4057, rod 0.0003 at `phi = pi/2`) was "cannot be assembled" in metres and
-/// millimetres and a position in micrometres. Here the miss `|c| - sqrt(a² + b²)` is judged
-/// against the residual tolerance (at least `16 eps`) of `size`, the same number in every
-/// unit ([`miss_in_terms`]): within it, the limit position; where every angle closes the
+/// The coefficients' own test (`touching`) allows a miss relative to `|c|` alone. Where `c` is a
+/// difference of terms much larger than itself (a short rod beside a long crank and offset:
+/// `l sin q = e + r sin phi` with `e` near `-r`), its rounding, a few `eps` of those terms, is
+/// many `eps` of `|c|`, and depends on the unit: a slider-crank closing exactly at its limit in
+/// decimal (crank 0.406, offset -0.4057, rod 0.0003 at `phi = pi/2`) was "cannot be assembled"
+/// in metres and millimetres and a position in micrometres. Here the miss `|c| - sqrt(a² + b²)`
+/// is judged against the residual tolerance (at least `16 eps`) of `size`, the same number in every
+/// unit (`miss_in_terms`): within it, the limit position; where every angle closes the
 /// equation within it (`|c| + sqrt(a² + b²)` within it: the angle's lever as short as the
-/// tolerance, the position not determined), singular as [`undetermined`]; otherwise no
+/// tolerance, the position not determined), singular (the pivot ratio 0); otherwise no
 /// assembly with the miss over `size` as residual. A failure other than no assembly, or a
 /// `size` that is not a positive finite number, stays as it is.
 ///
