@@ -31,7 +31,10 @@
 //!   `r @ (phi + gamma)`. The length comes first: a name that is an angle (it turns a link
 //!   elsewhere, `l @ psi`, is the argument of a sine or cosine, is set to an angle by an `eq`, or
 //!   has its value written in degrees) written as the length, `psi @ l`, is a compile error
-//!   that says to write `l @ psi`; so is a length written in degrees itself, `deg(30) @ l`. A
+//!   that says to write `l @ psi`; so is a length written in degrees itself, `deg(30) @ l`, and
+//!   a length that is an angle by its expression, as a coordinate below is judged (`(2 * phi) @
+//!   th`, a scalar `let` of an angle, `norm((phi, psi)) @ th`): the message gives a length to
+//!   write (`(r * phi) @ th` compiles) and, unless the angle is a constant, the swap. A
 //!   value in degrees may be scaled by a number or offset by one (`2 * deg(15)`,
 //!   `deg(90) - pi / 6`): it is an angle all the same. A name of no known kind cannot be told
 //!   from a length, so a swap whose angle is an angle nowhere else compiles as written. For
@@ -42,7 +45,8 @@
 //!   expression is, not by how it is written: an angle offset by a number or by another angle,
 //!   a multiple of one by a number (`(x, 2 * phi)`), a scalar `let` of one, `dot` of an
 //!   angle's vector and a direction, and an angle scaling a direction (`phi * (0, 1)`) are
-//!   angles there too; a length times an angle (`r * phi`, `l * dot((phi, 0), u)`) or a sine
+//!   angles there too, and so is the magnitude of a vector of angles (`norm((phi, psi))`,
+//!   `hypot(phi, 0.5)`); a length times an angle (`r * phi`, `l * dot((phi, 0), u)`) or a sine
 //!   of one is not. The vectors `dot`, `cross`, `norm` and `angle` take are no positions
 //!   themselves (`rot` gives its vector back turned, a position still). A force's value and
 //!   gravity are no positions, and a vector scaled by a length, `r * (phi, 0)`, has lengths for

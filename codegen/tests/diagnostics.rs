@@ -890,6 +890,75 @@ fn an_angle_beside_a_length_is_a_unit_mix() {
     }
 }
 
+/// The length of `@` is judged by the kind of its expression, as a coordinate is: twice an
+/// angle, an angle offset by a number, a scalar `let` of one and the magnitude of a vector of
+/// angles compiled into a link so many radians long. Each is told the length to write, and
+/// unless the angle of `@` is a constant, the swap too.
+#[test]
+fn an_angle_computed_as_the_length_of_a_polar_term_is_refused() {
+    let head = "params r, l, s, e0 = deg(3); input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for (body, shown, from, fix) in [
+        ("point p = (x, 0) + (2 * phi) @ psi;", "2 * phi", "phi", "write a length there, such as `r * (2 * phi)`"),
+        (
+            "point p = (x, 0) + (phi + 0.0) @ s;",
+            "phi + 0.0",
+            "phi",
+            "rolls, or if the two are swapped, write `s @ (phi + 0.0)`",
+        ),
+        ("let h = psi / 2; point p = (x, 0) + h @ 0;", "h", "psi", "write a length there, such as `r * h`"),
+        ("let h = phi; point p = (x, 0) + h @ s;", "h", "phi", "such as `r * h` for the arc a radius `r` rolls, or if"),
+        ("point p = (x, 0) + (2 * e0) @ s;", "2 * e0", "e0", "if the two are swapped, write `s @ (2 * e0)`"),
+        ("point p = (x, 0) + norm((phi, psi)) @ phi;", "norm((phi, psi))", "phi", "write a length there"),
+        ("point p = (x, 0) + hypot(psi, 0.1) @ s;", "hypot(psi, 0.1)", "psi", "write `s @ hypot(psi, 0.1)`"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        assert!(e[0].starts_with(&format!("`{shown}` is an angle (made from `{from}`, an angle: ")), "{body}: {e:#?}");
+        assert!(e[0].contains("but here it is the length of `@`, which takes `length @ angle`: "), "{body}: {e:#?}");
+        assert!(e[0].contains(fix), "{body}: {e:#?}");
+        // A constant direction has no angle to swap with.
+        assert_eq!(e[0].contains("swapped"), !body.contains("@ 0;"), "{body}: {e:#?}");
+    }
+}
+
+/// The magnitude of a vector of angles (`norm`, `hypot`) is an angle where a length belongs: a
+/// coordinate of a position, or beside a length in an `eq`.
+#[test]
+fn the_magnitude_of_angles_is_an_angle_where_a_length_belongs() {
+    let head = "params r, l, m; input phi; unknowns psi, x, s; loop c: r @ phi == (x, s) + l @ psi;";
+    for (body, shown, place) in [
+        ("eq e: s == r * phi; point p = (x, norm((phi, psi)));", "norm((phi, psi))", "a coordinate of a point"),
+        ("eq e: s == r * phi; body b: mass m, com (x, norm((psi, 0)));", "norm((psi, 0))", "a coordinate of a centre"),
+        ("eq e: s == r * phi; point p = (x, 0) + (hypot(phi, 1), 0);", "hypot(phi, 1)", "a coordinate of a point"),
+        ("eq e: s == norm((phi, 0.5));", "s == norm((phi, 0.5))", "equates an angle and a length"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        assert!(e[0].starts_with(&format!("`{shown}` ")), "{body}: {e:#?}");
+        assert!(e[0].contains(place), "{body}: {e:#?}");
+    }
+}
+
+/// What must keep compiling: a length times an angle as the length of `@` (a rolled arc), a
+/// sine of an angle as a factor of a coordinate, the magnitude of a vector of lengths, a length
+/// times a magnitude of angles, and a magnitude of angles that is no position (an output).
+#[test]
+fn lengths_made_from_angles_stay_lengths_of_polar_terms_and_coordinates() {
+    for body in [
+        "point p = (x, 0) + (r * psi) @ phi + (l * phi) @ 0;",
+        "point p = (x + r * sin(phi), sin(phi) * l) + sin(psi) * (r, 0) + (l * cos(phi)) @ psi;",
+        "point p = (x, 0) + norm((x, l)) @ phi + (x, hypot(r, l));",
+        "point p = (x, l * norm((phi, psi))) + (r * hypot(psi, 1)) @ 0;",
+        "output w = norm((phi, psi)) + hypot(phi, 1);",
+        "let k = r / l; point p = (x, 0) + (k * l) @ phi;",
+    ] {
+        let src = format!(
+            "pub struct S {{ params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; {body} }}"
+        );
+        assert_eq!(errors(&src), Vec::<String>::new(), "{body}");
+    }
+}
+
 /// A misspelt option, or a misspelt `kinloop` before it, gets the word meant, as a misspelt
 /// item keyword does; a word like none of them gets the list alone.
 #[test]

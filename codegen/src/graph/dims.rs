@@ -40,18 +40,34 @@ impl Dim {
 
 /// Whether the expression `n` is an angle, its leaves of the dimensions `leaf` gives: an angle
 /// offset by a number or by another angle, a multiple of one by a number, an angle's minimum,
-/// an inverse sine. A leaf of no known dimension (`Dim::Other`) makes nothing an angle.
+/// an inverse sine, the magnitude of a vector of angles. A leaf of no known dimension
+/// (`Dim::Other`) makes nothing an angle.
 pub fn is_angle(g: &Graph, n: NodeId, leaf: &dyn Fn(Leaf) -> Dim) -> bool {
-    dimensions(g, &[n], leaf).get(&n) == Some(&Dim::Angle)
+    judged(g, &[n], leaf).get(&n) == Some(&Dim::Angle)
 }
 
 /// The dimension of every node reachable from `roots`, bottom-up.
 pub fn dimensions(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Dim) -> HashMap<NodeId, Dim> {
+    walk(g, roots, leaf, false)
+}
+
+/// As [`dimensions`], and the magnitude of a vector of angles (`norm((phi, psi))`,
+/// `hypot(phi, 0.5)`: the square root of a sum of squares of angles and numbers) is an angle
+/// too. For what a value written where a length belongs is made of; the kinds the plan names
+/// keep such a magnitude unnamed, as a reported value of no unit kinloop writes.
+pub fn judged(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Dim) -> HashMap<NodeId, Dim> {
+    walk(g, roots, leaf, true)
+}
+
+/// The dimensions of [`dimensions`], with magnitudes of angles as [`judged`] takes them if
+/// `magnitudes`.
+fn walk(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Dim, magnitudes: bool) -> HashMap<NodeId, Dim> {
     let mut dim: HashMap<NodeId, Dim> = HashMap::new();
     // Ids are a topological order: operands come first.
     for n in g.reachable(roots) {
         let d = |a: NodeId| dim[&a];
         let v = match g.op(n) {
+            Op::Func(Func::Sqrt, a) if magnitudes && squares_of_angles(g, a, &dim) => Dim::Angle,
             Op::Const(_) => Dim::Num,
             Op::Leaf(l) => leaf(l),
             Op::Add(a, b) | Op::Sub(a, b) => sum(d(a), d(b)),
@@ -81,6 +97,32 @@ pub fn dimensions(g: &Graph, roots: &[NodeId], leaf: &dyn Fn(Leaf) -> Dim) -> Ha
         dim.insert(n, v);
     }
     dim
+}
+
+/// More terms than the sum under a magnitude of angles is read through.
+const MAX_SQUARES: usize = 32;
+
+/// Whether `n` is a sum of squares of angles and numbers with at least one angle (what
+/// `norm` and `hypot` of angles take the square root of), the dimensions of its operands in
+/// `dim`.
+/// A magnitude has a few terms: beyond [`MAX_SQUARES`] (a sum that shares its terms would be
+/// walked once per path) it is not read as one.
+fn squares_of_angles(g: &Graph, n: NodeId, dim: &HashMap<NodeId, Dim>) -> bool {
+    let (mut stack, mut angles, mut seen) = (vec![n], 0, 0);
+    while let Some(t) = stack.pop() {
+        seen += 1;
+        if seen > MAX_SQUARES {
+            return false;
+        }
+        match g.op(t) {
+            Op::Add(a, b) => stack.extend([a, b]),
+            Op::Const(_) if g.as_const(t).is_some_and(|c| c >= 0.0) => {}
+            Op::Powi(a, 2) if dim.get(&a) == Some(&Dim::Angle) => angles += 1,
+            Op::Powi(a, 2) if dim.get(&a) == Some(&Dim::Num) => {}
+            _ => return false,
+        }
+    }
+    angles > 0
 }
 
 /// The dimension of a sum: both terms alike (a number adopts the other's).

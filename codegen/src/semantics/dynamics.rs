@@ -397,7 +397,7 @@ fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
 /// For an input or unknown named as an angle (`turns`, `on`) that is the length of a polar term,
 /// `psi @ l`, what most likely happened: the term's length and angle are swapped.
 fn swapped_hint(lw: &Lowerer, leaf: Leaf) -> String {
-    match lw.named_lengths.iter().find(|t| t.leaf == leaf && !t.constant_angle) {
+    match lw.named_lengths.iter().find(|t| t.leaf == Some(leaf) && !t.constant_angle) {
         Some(t) => format!(
             "\nhelp: `{0} @ {1}` has `{0}` as the length of `@`, which takes `length @ angle`: if `{0}` is \
              the angle, write `{1} @ {0}`",

@@ -29,8 +29,8 @@ pub struct Lowerer {
     /// Set while an unknown's initial guess is lowered: a name defined further down may be
     /// moved above it only if it uses no unknown, which its error says.
     pub(super) in_guess: bool,
-    /// The polar terms whose length is a bare name, for the check that it is not an angle
-    /// (`th @ s` for `s @ th`), made once the whole mechanism is lowered ([`super::polar`]).
+    /// The polar terms whose length varies, for the check that it is not an angle (`th @ s` for
+    /// `s @ th`, `(2 * phi) @ 0`), made once the whole mechanism is lowered ([`super::polar`]).
     pub(super) named_lengths: Vec<NamedLength>,
     /// Set while an item whose vectors are positions is lowered (a `loop`, a `point`, a vector
     /// `let`, a force's point, a centre of mass): the coordinates of its Cartesian vectors are
@@ -60,15 +60,22 @@ pub struct Lowerer {
     pub(super) later_uses: std::collections::HashMap<String, std::collections::HashSet<String>>,
 }
 
-/// A polar term whose length is a bare name of a parameter, input or unknown, noted while it is
-/// lowered for the check that the name is not an angle ([`super::polar`]).
+/// A polar term whose length varies (a name, `2 * phi`, a scalar `let`, `norm(v)`), noted while
+/// it is lowered for the check that the length is not an angle ([`super::polar`]).
 pub(super) struct NamedLength {
-    /// The name's leaf.
-    pub(super) leaf: Leaf,
+    /// The length's leaf where it is a bare name of a parameter, input or unknown; `None` for
+    /// an expression, judged by its kind.
+    pub(super) leaf: Option<Leaf>,
+    /// The length lowered.
+    pub(super) node: NodeId,
+    /// The angle lowered.
+    pub(super) angle_node: NodeId,
     /// The whole term `length @ angle`.
     pub(super) term: SpanRange,
     /// The length as written.
     pub(super) length: String,
+    /// The length as a factor of a product, parenthesised where it is an operation.
+    pub(super) factor: String,
     /// The angle as written, parenthesised where it is an operation (so that the swap reads
     /// as one term).
     pub(super) angle: String,
@@ -77,17 +84,36 @@ pub(super) struct NamedLength {
 }
 
 impl NamedLength {
-    /// The term `lhs @ rhs` (lowered to `len @ angle`), if its length is a bare name of a
-    /// parameter, input or unknown.
-    pub(super) fn of(g: &Graph, (lhs, rhs): (&Expr, &Expr), len: NodeId, angle: NodeId) -> Option<Self> {
-        let Expr::Var(name) = bare(lhs) else { return None };
-        let leaf = match g.op(len) {
-            Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_))) => l,
-            _ => return None,
+    /// The term `lhs @ rhs` (lowered to `len @ angle`), unless its length is a constant or
+    /// written in degrees (refused as it is lowered). `declared` tells a name of a parameter,
+    /// input or unknown from a `let` that stands for one.
+    pub(super) fn of(
+        declared: &dyn Fn(&syn::Ident) -> bool,
+        g: &Graph,
+        (lhs, rhs): (&Expr, &Expr),
+        len: NodeId,
+        angle: NodeId,
+    ) -> Option<Self> {
+        let leaf = match (bare(lhs), g.op(len)) {
+            (e, _) if e.written_in_degrees() => return None,
+            (Expr::Var(name), Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_)))) if declared(name) => {
+                Some(l)
+            }
+            _ if g.as_const(len).is_some() => return None,
+            _ => None,
         };
         let constant_angle = g.as_const(angle).is_some();
         let term = lhs.range().to(rhs.range());
-        Some(NamedLength { leaf, term, length: name.to_string(), angle: operand(rhs), constant_angle })
+        Some(NamedLength {
+            leaf,
+            node: len,
+            angle_node: angle,
+            term,
+            length: bare(lhs).show(),
+            factor: operand(lhs),
+            angle: operand(rhs),
+            constant_angle,
+        })
     }
 }
 
@@ -557,7 +583,9 @@ impl Lowerer {
                 None => Val::S(g.powf(a, b)),
             },
             (BinOp::Polar, Val::S(len), Val::S(angle)) => {
-                self.named_lengths.extend(NamedLength::of(g, sides, len, angle));
+                let noted = NamedLength::of(&|id| self.declares_leaf(id), &self.graph, sides, len, angle);
+                self.named_lengths.extend(noted);
+                let g = &mut self.graph;
                 if let Some(e) = degrees_as_length(sides, g.as_const(angle).is_some()) {
                     self.errors.push(e);
                 }

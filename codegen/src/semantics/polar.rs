@@ -1,7 +1,9 @@
 //! The check that `@` has its length first: `length @ angle`. A polar term whose length is a
 //! bare name of an angle (`th @ s` for `s @ th`) compiles as a link of `th` radians turned by
 //! `s`, a mechanism that solves to wrong angles, or not at all, and whose results change with
-//! the unit of length; it is refused at the term, with the swap to write.
+//! the unit of length; it is refused at the term, with the swap to write. A length that is an
+//! expression is judged by its kind, as a coordinate is (below): `(2 * phi) @ th` and
+//! `norm((phi, psi)) @ th` are refused, with a length to write and the swap.
 //!
 //! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
 //! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
@@ -23,7 +25,7 @@
 //! (`(r * phi) @ 0`), a constant, or a name of no known kind stays the length it is written as.
 
 use super::dynamics::{is_angle, leaf_name};
-use super::lower::{Coordinate, Lowerer, NamedCoordinate, Place, ScalarPair};
+use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair};
 use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
@@ -71,25 +73,55 @@ impl Angles {
     }
 }
 
-/// Reports every polar term noted in `lw` whose length is an angle.
+/// Reports every polar term noted in `lw` whose length is an angle: a name that is one, or an
+/// expression of one (`(2 * phi) @ th`, `(phi + 0.0) @ th`, `norm((phi, psi)) @ th`) judged by
+/// its kind, as a coordinate is (`(r * phi) @ th` is a length). The names first: the angle of a
+/// term they find swapped (`l` in `psi @ l`) is an angle only by that mistake, and makes no
+/// expression of it one (`0.5 * l @ psi` is told nothing more).
 pub(super) fn check(lw: &mut Lowerer, angles: &mut Angles) {
-    let terms = std::mem::take(&mut lw.named_lengths);
-    for t in terms {
-        let (length, angle) = (&t.length, &t.angle);
-        let Some(why) = angles.why(&lw.graph, t.leaf, length) else {
-            angles.lengths.insert(t.leaf);
+    let (names, expressions): (Vec<_>, Vec<_>) =
+        std::mem::take(&mut lw.named_lengths).into_iter().partition(|t| t.leaf.is_some());
+    let mut swapped = HashSet::new();
+    for t in names {
+        let leaf = t.leaf.expect("partitioned by leaf");
+        let Some(why) = angles.why(&lw.graph, leaf, &t.length) else {
+            angles.lengths.insert(leaf);
             continue;
         };
-        let fix = if t.constant_angle {
-            // `th @ 0`: no length to swap with; an arc rolled by `th` is a radius times it.
-            format!("write a length there, such as `r * {length}` for the arc a radius `r` rolls")
-        } else {
-            format!("the two are swapped; write `{angle} @ {length}`")
-        };
-        lw.errors.push(t.term.error(format!(
-            "`{length}` is an angle ({why}), but here it is the length of `@`, which takes `length @ angle`: {fix}"
-        )));
+        if !t.constant_angle {
+            swapped.extend(lw.graph.leaves_of(&[t.angle_node]));
+        }
+        let fix = if t.constant_angle { arc(&t) } else { swap(&t) };
+        lw.errors.push(length_error(&t, &why, &fix));
     }
+    for t in expressions {
+        let Some(why) = why_expression(lw, angles, t.node, &swapped) else { continue };
+        // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
+        // angle of `@` is an angle by that term alone): both ways are told.
+        let fix = match t.constant_angle {
+            true => arc(&t),
+            false => format!("{}, or if the two are swapped, write `{} @ {}`", arc(&t), t.angle, t.factor),
+        };
+        lw.errors.push(length_error(&t, &why, &fix));
+    }
+}
+
+/// A length to write for the length `t` has: an arc rolled by it.
+fn arc(t: &NamedLength) -> String {
+    format!("write a length there, such as `r * {}` for the arc a radius `r` rolls", t.factor)
+}
+
+/// The swap of the term `t`.
+fn swap(t: &NamedLength) -> String {
+    format!("the two are swapped; write `{} @ {}`", t.angle, t.factor)
+}
+
+/// The error for the polar term `t` whose length is an angle (`why`), with the `fix` to write.
+fn length_error(t: &NamedLength, why: &str, fix: &str) -> syn::Error {
+    t.term.error(format!(
+        "`{}` is an angle ({why}), but here it is the length of `@`, which takes `length @ angle`: {fix}",
+        t.length
+    ))
 }
 
 /// The errors for every coordinate noted in `lw` that is an angle where a position is written
@@ -135,25 +167,29 @@ fn why_coordinate(lw: &Lowerer, angles: &mut Angles, c: &NamedCoordinate) -> Opt
         Coordinate::Name(leaf) => Some((angles.why(g, leaf, &c.name)?, Some(c.node))),
         // Written in degrees there: `(x, deg(5))`.
         Coordinate::Degrees => Some((why_an_angle(true, false, &c.name)?, None)),
-        Coordinate::Expr(n) => {
-            // The first leaf that is an angle names why; the kinds of the operations say
-            // whether the whole is one (`2 * phi` is, `r * phi` and `sin(phi)` are not).
-            let mut why = None;
-            let mut found = HashSet::new();
-            for leaf in g.leaves_of(&[n]) {
-                let name = leaf_name(lw, leaf).unwrap_or_default();
-                if let Some(w) = angles.why(g, leaf, &name) {
-                    why.get_or_insert_with(|| format!("made from `{name}`, an angle: {w}"));
-                    found.insert(leaf);
-                }
-            }
-            let of = |l: Leaf| if found.contains(&l) { Dim::Angle } else { Dim::Other };
-            if found.is_empty() || !dims::is_angle(g, n, &of) {
-                return None;
-            }
-            Some((why?, Some(n)))
+        Coordinate::Expr(n) => Some((why_expression(lw, angles, n, &HashSet::new())?, Some(n))),
+    }
+}
+
+/// Why the expression `n` is an angle, named by the first leaf that is one; `None` when the
+/// kinds of its operations do not make it one (`2 * phi` is, `r * phi` and `sin(phi)` are not).
+/// The leaves `ignored` are taken for no angle.
+fn why_expression(lw: &Lowerer, angles: &mut Angles, n: NodeId, ignored: &HashSet<Leaf>) -> Option<String> {
+    let g = &lw.graph;
+    let mut why = None;
+    let mut found = HashSet::new();
+    for leaf in g.leaves_of(&[n]).into_iter().filter(|l| !ignored.contains(l)) {
+        let name = leaf_name(lw, leaf).unwrap_or_default();
+        if let Some(w) = angles.why(g, leaf, &name) {
+            why.get_or_insert_with(|| format!("made from `{name}`, an angle: {w}"));
+            found.insert(leaf);
         }
     }
+    let of = |l: Leaf| if found.contains(&l) { Dim::Angle } else { Dim::Other };
+    if found.is_empty() || !dims::is_angle(g, n, &of) {
+        return None;
+    }
+    why
 }
 
 /// Reports every scalar sum, difference and `eq` noted in `lw` that puts an angle beside a
@@ -188,7 +224,7 @@ fn angle_beside_length(lw: &Lowerer, angles: &mut Angles, p: &ScalarPair) -> Opt
         _ if angles.lengths.contains(&l) => Dim::L(1),
         _ => Dim::Other,
     };
-    let d = dims::dimensions(g, &[a, b], &of);
+    let d = dims::judged(g, &[a, b], &of);
     let dim = |n: NodeId| d.get(&n).copied().unwrap_or(Dim::Other);
     let (angle, length) = match (dim(a), dim(b)) {
         (Dim::Angle, Dim::L(1)) => (0, 1),
