@@ -855,6 +855,46 @@ fn an_angle_in_a_let_of_a_point_and_a_mass_is_reported_once() {
     }
 }
 
+/// Each wrong coordinate of a centre of mass or a force's point gets its one error: an angle
+/// unknown written there was told nothing when the other coordinate was refused as an angle
+/// (`(psi, 2 * phi)`, `(psi, phi)`), when it was refused elsewhere (a point `(x, psi)`), or
+/// beside another angle unknown (`(psi, beta)`, where only the first was told). One written
+/// twice, or reaching the position through a `let` or point refused for it, is told once.
+#[test]
+fn each_angle_in_a_centre_of_mass_is_reported_once() {
+    let head = "params r, l, m; input phi; unknowns psi, x, beta, y;
+                loop c: r @ phi == (x, 0) + l @ psi; loop d: r @ phi + l @ beta == (y, 1);";
+    let unknown = |name: &str| format!("a centre of mass is a point of lengths, but `{name}` is an angle");
+    let coordinate = |name: &str| format!("`{name}` is an angle (");
+    for (body, says) in [
+        ("body b: mass m, com (psi, 2 * phi);", vec![unknown("psi"), coordinate("2 * phi")]),
+        ("body b: mass m, com (psi, phi);", vec![unknown("psi"), coordinate("phi")]),
+        ("body b: mass m, com (psi, beta);", vec![unknown("psi"), unknown("beta")]),
+        ("body b: mass m, com (psi, psi);", vec![unknown("psi")]),
+        ("point p = (x, psi); body b: mass m, com (x, psi);", vec![unknown("psi"), coordinate("psi")]),
+        (
+            "point p = (x, psi); body b: mass m, com (beta, psi);",
+            vec![unknown("beta"), unknown("psi"), coordinate("psi")],
+        ),
+        ("point p = (x, psi); body b: mass m, com p;", vec![coordinate("psi")]),
+        ("let v = (psi, 0); body b: mass m, com (v.x, beta);", vec![unknown("beta"), coordinate("psi")]),
+        (
+            "body b: mass m, com (y, 2 * psi); body d: mass m, com (psi, 0);",
+            vec![unknown("psi"), coordinate("2 * psi")],
+        ),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), says.len(), "{body}: {e:#?}");
+        for (m, s) in e.iter().zip(&says) {
+            assert!(m.starts_with(s.as_str()), "{body}: {e:#?}");
+        }
+    }
+    let e = errors(&format!("pub struct S {{ {head} force f at (psi, phi) = (1, 0); }}"));
+    assert_eq!(e.len(), 2, "{e:#?}");
+    assert!(e[0].starts_with("the point a force acts at is a point of lengths, but `psi` is an angle"), "{e:#?}");
+    assert!(e[1].starts_with("`phi` is an angle ("), "{e:#?}");
+}
+
 /// An angle beside a length, in an `eq` or in a sum of a `loop`, `eq` or `let`, makes a
 /// mechanism that changes with the unit of length: a length is a name written bare as a
 /// coordinate of a position or as the length of `@`, an angle one that turns a link (or is in

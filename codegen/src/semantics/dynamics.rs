@@ -97,6 +97,8 @@ impl DynamicsModel {
 struct PendingPoint {
     x: NodeId,
     y: NodeId,
+    /// Its number among the positions of the dynamics (`Place::Dynamics`).
+    id: usize,
     range: SpanRange,
     /// The source, for the message that asks to declare it as a point.
     shown: String,
@@ -280,41 +282,51 @@ impl Pending {
             }
         }
         let mut coords = |lw: &mut Lowerer, p: &PendingPoint, what: &str| -> Option<[CoordModel; 2]> {
-            let c = [coord(&lw.graph, &columns, p.x), coord(&lw.graph, &columns, p.y)];
-            if let [Some(x), Some(y)] = c {
-                // A coordinate that is an angle unknown puts the point at so many radians: a
-                // body's mass there counted in mass rad^2 beside the others' mass length^2, and
-                // results that changed with the unit of length, without a word.
-                let angle = [x, y].into_iter().find_map(|c| match c {
-                    CoordModel::Unknown(u) => {
-                        let leaf = Leaf::Unknown(u as u16);
-                        let verdict =
-                            *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
-                        verdict.then_some(leaf)
-                    }
-                    _ => None,
-                });
-                let Some(leaf) = angle else { return Some([x, y]) };
-                if [p.x, p.y].iter().any(|n| lw.graph.op(*n) == Op::Leaf(leaf) && lw.refused_positions.contains(n)) {
-                    // Refused where it is written as a coordinate, by [`super::polar`].
-                    return None;
+            let nodes = [p.x, p.y];
+            // Refused by [`super::polar`] where it is written: in a `let` or point this position
+            // uses, or as an expression here (`2 * psi`). An unknown written bare here is this
+            // check's to judge, even if the same one is refused at another position.
+            let refused = |lw: &Lowerer, n: NodeId| {
+                lw.refused_positions.contains(&n) && !lw.left_to_dynamics.contains(&(p.id, n))
+            };
+            // A coordinate that is an angle unknown puts the point at so many radians: a body's
+            // mass there counted in mass rad^2 beside the others' mass length^2, and results
+            // that changed with the unit of length, without a word. Each such coordinate is
+            // told, once per name.
+            let mut angles: Vec<Leaf> = Vec::new();
+            for n in nodes {
+                let Op::Leaf(leaf @ Leaf::Unknown(_)) = lw.graph.op(n) else { continue };
+                if refused(lw, n) || angles.contains(&leaf) {
+                    continue;
                 }
+                let verdict = *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
+                if verdict {
+                    angles.push(leaf);
+                }
+            }
+            for &leaf in &angles {
                 let name = leaf_name(lw, leaf).unwrap_or_default();
                 lw.errors.push(p.range.error(format!(
                     "{what} is a point of lengths, but `{name}` is an angle: write a length for that coordinate \
                      (a slider's unknown, a constant, or a declared point)"
                 )));
-                return None;
+            }
+            // The other coordinates are read from the state, or refused where they are written
+            // (an angle input, `2 * psi`: declaring the point would not mend them), or not read.
+            let told =
+                |lw: &Lowerer, n: NodeId| refused(lw, n) || angles.iter().any(|&l| lw.graph.op(n) == Op::Leaf(l));
+            let unread: Vec<NodeId> =
+                nodes.into_iter().filter(|&n| !told(lw, n) && coord(&lw.graph, &columns, n).is_none()).collect();
+            if unread.is_empty() {
+                let read = [coord(&lw.graph, &columns, p.x), coord(&lw.graph, &columns, p.y)];
+                return match (nodes.iter().any(|&n| told(lw, n)), read) {
+                    (false, [Some(x), Some(y)]) => Some([x, y]),
+                    _ => None,
+                };
             }
             // The mass model reads no input (the runtime's `Coord` has no such coordinate): a
             // point that moves with one is declared, and read as the output it then is.
-            let input = [p.x, p.y].into_iter().find_map(|n| input_name(lw, n));
-            if [p.x, p.y].iter().any(|n| lw.refused_positions.contains(n)) {
-                // An angle as a coordinate (an input, `2 * psi`): refused where it is written,
-                // with a length to write, by [`super::polar`]; declaring the point would not
-                // mend it.
-                return None;
-            }
+            let input = unread.iter().find_map(|&n| input_name(lw, n));
             let why = input.map(|i| format!(", and `{i}` is an input")).unwrap_or_default();
             lw.errors.push(p.range.error(format!(
                 "{what} must be a declared point, or `(x, y)` of unknowns, outputs and constants{why}: \
@@ -366,8 +378,10 @@ fn parameter_value(lw: &mut Lowerer, e: &Expr, what: &str) -> Option<NodeId> {
 }
 
 fn point(lw: &mut Lowerer, e: &Expr, what: &'static str) -> Option<PendingPoint> {
-    match lw.lower_in(Place::Dynamics(what), |lw| lw.lower(e))? {
-        Val::V(x, y) => Some(PendingPoint { x, y, range: e.range(), shown: e.show() }),
+    let id = lw.dynamics_positions;
+    lw.dynamics_positions += 1;
+    match lw.lower_in(Place::Dynamics(what, id), |lw| lw.lower(e))? {
+        Val::V(x, y) => Some(PendingPoint { x, y, id, range: e.range(), shown: e.show() }),
         Val::S(_) => {
             lw.errors.push(e.range().error(format!(
                 "{what} is a point (a vector), but this is a scalar: write a declared `point` or `(x, y)`"

@@ -52,6 +52,12 @@ pub struct Lowerer {
     /// The coordinates refused as angles by [`super::polar`], checked before the dynamics so
     /// that a centre of mass or a force's point that has one is not reported again.
     pub(super) refused_positions: std::collections::HashSet<NodeId>,
+    /// The unknowns written bare as a coordinate of a position of the dynamics, by the
+    /// position's number: an angle there is refused by the dynamics' own check, whether or not
+    /// the same unknown is refused elsewhere.
+    pub(super) left_to_dynamics: std::collections::HashSet<(usize, NodeId)>,
+    /// How many positions of the dynamics are lowered: the number of the next.
+    pub(super) dynamics_positions: usize,
     /// The `let`, `point` or `output` whose value is being lowered: a use of its own name
     /// there is a definition in terms of itself, not a definition further down.
     pub(super) defining: Option<String>,
@@ -167,8 +173,9 @@ pub(super) enum Place {
     Point,
     /// The `let` of this name: a position if a loop, a point or such a `let` uses it.
     Let(String),
-    /// A position of the dynamics, described so (`the point a force acts at`).
-    Dynamics(&'static str),
+    /// A position of the dynamics, described so (`the point a force acts at`), with its number
+    /// among them: a coordinate written there is told apart from one of a `let` it uses.
+    Dynamics(&'static str, usize),
 }
 
 impl Place {
@@ -178,7 +185,7 @@ impl Place {
             Place::Loop => "a vector in a loop, which adds lengths".to_string(),
             Place::Point => "a point, which is a position in lengths".to_string(),
             Place::Let(name) => format!("`{name}`, a vector that a loop or point takes as lengths"),
-            Place::Dynamics(what) => format!("{what}, a position in lengths"),
+            Place::Dynamics(what, _) => format!("{what}, a position in lengths"),
         }
     }
 }
@@ -311,6 +318,8 @@ impl Lowerer {
             named_coordinates: Vec::new(),
             let_uses: Vec::new(),
             refused_positions: Default::default(),
+            left_to_dynamics: Default::default(),
+            dynamics_positions: 0,
             scalar_pairs: Vec::new(),
             in_let: false,
             defining: None,

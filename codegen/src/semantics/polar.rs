@@ -138,8 +138,9 @@ pub(super) fn coordinates(lw: &mut Lowerer, angles: &mut Angles) -> Vec<syn::Err
         {
             continue;
         }
-        if let (Place::Dynamics(_), Coordinate::Name(Leaf::Unknown(_))) = (&c.place, c.what) {
+        if let (Place::Dynamics(_, at), Coordinate::Name(Leaf::Unknown(_))) = (&c.place, c.what) {
             // An angle unknown at a body's or a force's point: refused by the dynamics' check.
+            lw.left_to_dynamics.insert((*at, c.node));
             continue;
         }
         let Some((why, node)) = why_coordinate(lw, angles, &c) else {
