@@ -855,6 +855,29 @@ fn an_angle_in_a_let_of_a_point_and_a_mass_is_reported_once() {
     }
 }
 
+/// A vector `let` of an angle that only the dynamics takes as a position was said to be taken
+/// by "a loop or point", which named neither where it was used: it names the centre of mass or
+/// the force's point that takes it, directly or through another `let`.
+#[test]
+fn a_let_taken_only_by_the_dynamics_names_what_takes_it() {
+    let head = "params r, l, m; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for (body, taken) in [
+        ("let v = (x, psi); body b: mass m, com v;", "a centre of mass takes"),
+        ("let v = (x, psi); force f at v = (1, 0);", "the point a force acts at takes"),
+        ("let v = (x, phi); let w = v; body b: mass m, com w;", "a centre of mass takes"),
+        (
+            "let v = (x, psi); body b: mass m, com v; force f at v = (1, 0);",
+            "a centre of mass and the point a force acts at take",
+        ),
+        ("let v = (x, psi); point p = v; body b: mass m, com v;", "a loop or point takes"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        let place = format!("but here it is a coordinate of `v`, a vector that {taken} as lengths: write a length");
+        assert!(e[0].contains(&place), "{body}: {e:#?}");
+    }
+}
+
 /// Each wrong coordinate of a centre of mass or a force's point gets its one error: an angle
 /// unknown written there was told nothing when the other coordinate was refused as an angle
 /// (`(psi, 2 * phi)`, `(psi, phi)`), when it was refused elsewhere (a point `(x, psi)`), or

@@ -134,7 +134,7 @@ pub(super) fn coordinates(lw: &mut Lowerer, angles: &mut Angles) -> Vec<syn::Err
     let mut errors = Vec::new();
     for c in coordinates {
         if let Place::Let(l) = &c.place
-            && !positions.contains(l)
+            && !positions.contains_key(l)
         {
             continue;
         }
@@ -154,7 +154,7 @@ pub(super) fn coordinates(lw: &mut Lowerer, angles: &mut Angles) -> Vec<syn::Err
             "`{}` is an angle ({why}), but here it is a coordinate of {}: write a length there, such as \
              `r * {}` for the arc a radius `r` rolls",
             c.name,
-            c.place.describe(),
+            describe(&c.place, &positions),
             c.factor
         )));
     }
@@ -246,21 +246,62 @@ fn angle_beside_length(lw: &Lowerer, angles: &mut Angles, p: &ScalarPair) -> Opt
     )))
 }
 
+/// What takes a vector `let` as a position, directly or through other `let`s.
+#[derive(Clone, Default)]
+struct Takers {
+    /// A loop or a point.
+    loop_or_point: bool,
+    /// The positions of the dynamics, as they are described (`a centre of mass`).
+    dynamics: Vec<&'static str>,
+}
+
+impl Takers {
+    fn add(&mut self, other: &Takers) {
+        self.loop_or_point |= other.loop_or_point;
+        for what in &other.dynamics {
+            if !self.dynamics.contains(what) {
+                self.dynamics.push(what);
+            }
+        }
+    }
+}
+
 /// The `let`s that a loop, a point or a position of the dynamics uses, directly or through
-/// other such `let`s (`uses`: each `let` named, with the item that names it): their vectors
-/// are positions too.
-fn lets_taken_as_lengths(uses: &[(Place, String)]) -> HashSet<String> {
-    let mut found: HashSet<String> =
-        uses.iter().filter(|(p, _)| !matches!(p, Place::Let(_))).map(|(_, l)| l.clone()).collect();
+/// other such `let`s (`uses`: each `let` named, with the item that names it), with what takes
+/// each: their vectors are positions too.
+fn lets_taken_as_lengths(uses: &[(Place, String)]) -> HashMap<String, Takers> {
+    let mut found: HashMap<String, Takers> = HashMap::new();
+    for (place, used) in uses {
+        let taker = match place {
+            Place::Let(_) => continue,
+            Place::Loop | Place::Point => Takers { loop_or_point: true, dynamics: Vec::new() },
+            Place::Dynamics(what, _) => Takers { loop_or_point: false, dynamics: vec![*what] },
+        };
+        found.entry(used.clone()).or_default().add(&taker);
+    }
     // A `let` uses only those above it: one pass from the bottom up reaches them all.
     for (place, used) in uses.iter().rev() {
         if let Place::Let(user) = place
-            && found.contains(user)
+            && let Some(takers) = found.get(user).cloned()
         {
-            found.insert(used.clone());
+            found.entry(used.clone()).or_default().add(&takers);
         }
     }
     found
+}
+
+/// What a coordinate at `place` is, for the message: "a coordinate of ...". A `let` is named
+/// with what takes it (`positions`): a centre of mass or a force's point by name, as a
+/// loop's or point's `let` is "a vector that a loop or point takes".
+fn describe(place: &Place, positions: &HashMap<String, Takers>) -> String {
+    let Place::Let(name) = place else { return place.describe() };
+    match positions.get(name) {
+        Some(t) if !t.loop_or_point && !t.dynamics.is_empty() => {
+            let verb = if t.dynamics.len() == 1 { "takes" } else { "take" };
+            format!("`{name}`, a vector that {} {verb} as lengths", t.dynamics.join(" and "))
+        }
+        _ => place.describe(),
+    }
 }
 
 /// Why the name `name` is an angle: its value is in `degrees`, or it is `known` as one from the
