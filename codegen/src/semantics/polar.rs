@@ -83,7 +83,7 @@ pub(super) fn check(lw: &mut Lowerer, angles: &mut Angles) {
         std::mem::take(&mut lw.named_lengths).into_iter().partition(|t| t.leaf.is_some());
     let mut swapped = HashSet::new();
     for t in names {
-        let leaf = t.leaf.expect("partitioned by leaf");
+        let Some(leaf) = t.leaf else { continue };
         let Some(why) = angles.why(&lw.graph, leaf, &t.length) else {
             angles.lengths.insert(leaf);
             continue;
