@@ -472,6 +472,18 @@ macro_rules! model_kernel_body {
         fn location(&self, x: &[f64], block: Option<usize>) -> Box<kinloop_runtime::Location> {
             self.info().location(x, block)
         }
+        /// No angle parameter beyond the bound of `cfg`: the compiled `check_param_angles`'s
+        /// error otherwise.
+        fn check_param_angles(&self, cfg: &kinloop_runtime::NewtonConfig) -> Result<(), kinloop_runtime::Error> {
+            let bound = cfg.largest_precise_angle();
+            self.lend(|m, _| match m.angle_param_beyond(bound) {
+                None => Ok(()),
+                Some(k) => {
+                    let value = m.param_values()[k].unwrap_or(f64::NAN);
+                    Err(kinloop_runtime::generated::imprecise_param(&self.info().name, &m.params()[k], value, bound))
+                }
+            })
+        }
         fn solver_config(&self) -> kinloop_runtime::SweepConfig {
             self.info().config
         }

@@ -80,18 +80,6 @@ macro_rules! model_sens_body {
                 None => Ok(()),
             }
         }
-        /// No angle parameter beyond the bound of `cfg`: the compiled `check_param_angles`'s
-        /// error otherwise.
-        fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error> {
-            let bound = cfg.largest_precise_angle();
-            self.lend(|m, _| match m.angle_param_beyond(bound) {
-                None => Ok(()),
-                Some(k) => {
-                    let value = m.param_values()[k].unwrap_or(f64::NAN);
-                    Err(kinloop_runtime::generated::imprecise_param(&self.info().name, &m.params()[k], value, bound))
-                }
-            })
-        }
         fn sens(&self) -> ModelSens {
             let np = self.param_count();
             let d = self.info().sizes;

@@ -719,3 +719,53 @@ fn synthesis_refuses_a_design_whose_angle_parameter_is_beyond_the_precise_angles
     let default_bound = NewtonConfig::default().largest_precise_angle();
     named_with(&model.synthesis_problem(&lengths, &task).map(|_| ()).unwrap_err(), "1e80", default_bound);
 }
+
+/// The kernel-level functions, over a compiled mechanism lent as a kernel (`Compiled(&m)`): each
+/// refuses `alpha_b = 1e80` (where `th2 + alpha_b == alpha_b`, so a solve answers for other
+/// equations: residuals of 4.5 length units on the declared loop, `imprecise_angle_param.py`)
+/// once at its start with the error of `solve`. Before, only the compiled wrappers checked: a
+/// sweep made over the kernel and `sweep_at_of` gave a wrong first state, and the others
+/// ground through the wrong equations.
+#[test]
+fn the_kernel_level_functions_refuse_an_angle_parameter_beyond_the_precise_angles() {
+    use kinloop::dynamics::{Dynamics, RunConfig, each_turn_state, simulate_of, simulate_steps_of, turn_states};
+    use kinloop::paths::{modes, reach, scan, sweep::SweepOf, sweep_at, trace};
+    use kinloop::{Compiled, analysis::SampledOf, metrics::limits_of};
+    let (compiled, _) = class_four_at(1e80);
+    let solved = compiled.solve(0.5).map(|_| ()).unwrap_err();
+    let q: [f64; 4] = compiled.guess(0.0).into();
+    let k = Compiled(&compiled);
+
+    let listed = sweep_at::sweep_at_of(&k, [[0.0], [0.5], [1.0]], q);
+    assert!(listed.states.is_empty(), "{} states", listed.states.len());
+    assert_eq!(listed.into_result().map(|_| ()).unwrap_err(), solved);
+    let mut sweep = SweepOf::<_, Kin<4, 1, 8>>::over(k, [0.0], [1.0], 3, q).expect("the sweep is made");
+    assert_eq!(sweep.next().map(|r| r.map(|_| ())), Some(Err(solved.clone())));
+    assert!(sweep.next().is_none(), "the sweep stops at the refusal");
+    let folded = scan::fold_sweep_of(k, [0.0], [1.0], 3, q, None, || 0, |n, _| n + 1);
+    assert_eq!(folded.unwrap_err(), solved);
+    let sampled = SampledOf::over(k, [0.0], [1.0], 3, q, SweepConfig::default());
+    assert_eq!(sampled.map(|_| ()).unwrap_err(), solved);
+    assert_eq!(limits_of(k, 0.0, 1.0, 3, q, &["th1"]).map(|_| ()).unwrap_err(), solved);
+    assert_eq!(reach::reachable_of(&k, [0.5], [0.1], q, 3).map(|_| ()).unwrap_err(), solved);
+    let traced = trace::trace_curve_of(&k, [0.0], [1.0], q, &Default::default());
+    assert_eq!(traced.map(|_| ()).unwrap_err(), solved);
+    let found = modes::assembly_modes_of(&k, &[0.5], 8, &NewtonConfig::default());
+    assert_eq!(found.map(|_| ()).unwrap_err(), solved);
+
+    // The dynamics over a kernel: the kinematic error before the first state or step.
+    let kinematic = |e: kinloop::dynamics::DynamicsError| match e {
+        kinloop::dynamics::DynamicsError::Kinematics { t: None, source } => source,
+        e => panic!("{e}"),
+    };
+    assert_eq!(kinematic(turn_states(k, 0.0, 8, q).map(|_| ()).unwrap_err()), solved);
+    let mut visited = 0;
+    assert_eq!(kinematic(each_turn_state(k, 0.0, 8, q, |_| visited += 1).unwrap_err()), solved);
+    assert_eq!(visited, 0);
+    let reduced = |_: &Kin<4, 1, 8>, _: f64| Ok(Dynamics { mass: [[1.0]], gamma: [[[0.0]]], forces: [0.0] });
+    let (run, drive) = (RunConfig::default(), |_: f64, _: f64, _: f64| 1.0);
+    let simulated = simulate_of(k, reduced, drive, [0.5, 1.0], 1.0, q, &run, |_, _| false);
+    assert_eq!(kinematic(simulated.map(|_| ()).unwrap_err()), solved);
+    let stepped = simulate_steps_of(k, reduced, drive, [0.5, 1.0], 1.0, q, &run, |_, _| false);
+    assert_eq!(kinematic(stepped.map(|_| ()).unwrap_err()), solved);
+}

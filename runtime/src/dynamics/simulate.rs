@@ -217,8 +217,8 @@ where
         D: Fn(f64, f64, f64) -> f64,
         S: FnMut(f64, &[f64; 2]) -> bool,
     {
-        // Once at the start, not at each step's solves.
-        self.m.check_param_angles(&self.cfg.newton).map_err(DynamicsError::kin)?;
+        // `simulate_steps_of` refuses an angle parameter too large to resolve, once at the
+        // start, not at each step's solves.
         let guess = self.guess.unwrap_or_else(|| self.m.guess_flat(&[self.start[0]]));
         let model = self.model;
         let reduced = |k: &Kin<N, 1, NO>, omega: f64| model.dynamics(k, &[omega]);

@@ -89,7 +89,8 @@ impl Trajectory {
 /// omega)` the driving torque; `stop(t, [phi, omega])`, asked after every step, ends the run
 /// early. The errors of [`Simulation::run`](super::Simulation::run); besides, a kernel with
 /// other than one input, or a guess of another size than its unknowns, is
-/// [`DynamicsError::SizeMismatch`]. Besides the recorded trajectory (one entry per accepted
+/// [`DynamicsError::SizeMismatch`]; an angle parameter beyond the `largest_precise_angle` of
+/// `cfg.newton` ([`Kernel::check_param_angles`]) is refused before the first step. Besides the recorded trajectory (one entry per accepted
 /// step, amortised growth), a step allocates nothing unless `reduced` does.
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_of<K: Kernel>(
@@ -213,6 +214,8 @@ pub fn simulate_steps_of<K: Kernel>(
     }
     // The kernel's step requires valid settings: checked once, as the first solve's error.
     cfg.newton.validate().map_err(|source| DynamicsError::Kinematics { t: Some(0.0), source })?;
+    // An angle parameter too large to resolve: once, before the first evaluation.
+    m.check_param_angles(&cfg.newton).map_err(DynamicsError::kin)?;
     // The workspace of every evaluation, made once: the input, the last position, the state.
     let (mut x, mut q, mut k) = (d.x(), guess, d.kin());
     // The first solve is from the caller's guess; every later one from the last position, where

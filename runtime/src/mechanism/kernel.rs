@@ -63,6 +63,17 @@ pub trait Kernel {
     fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location>;
     /// The solver configuration used where none is given ([`Mechanism::solver_config`]).
     fn solver_config(&self) -> SweepConfig;
+    /// No angle parameter beyond the [`largest_precise_angle`](NewtonConfig::largest_precise_angle)
+    /// of `cfg` (a compiled mechanism's [`Mechanism::check_param_angles`], whose error names
+    /// the parameter, its value and the bound): a mechanism whose angle parameter is so large
+    /// that an angle added to it is lost to rounding solves other equations than the declared
+    /// ones. Every algorithm over a kernel asks it once at its start (a sweep at its first
+    /// sample), never per step. By default none is (a hand-written kernel, which declares no
+    /// angle parameters).
+    fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error> {
+        let _ = cfg;
+        Ok(())
+    }
     /// The declared initial guess at input `x` ([`Mechanism::guess_flat`]): the assembly mode
     /// an assembly-mode search and a scan start from.
     fn guess(&self, x: &<Self::Dims as Dims>::X) -> <Self::Dims as Dims>::Q;
@@ -210,6 +221,9 @@ macro_rules! compiled_kernel_body {
         fn solver_config(&self) -> SweepConfig {
             self.0.solver_config()
         }
+        fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error> {
+            self.0.check_param_angles(cfg)
+        }
         #[inline(always)]
         fn guess(&self, x: &[f64; NI]) -> [f64; N] {
             self.0.guess_flat(x)
@@ -304,6 +318,9 @@ impl<K: Kernel> Kernel for &K {
     #[inline(always)]
     fn solver_config(&self) -> SweepConfig {
         (**self).solver_config()
+    }
+    fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error> {
+        (**self).check_param_angles(cfg)
     }
     #[inline(always)]
     fn guess(&self, x: &X<K>) -> Q<K> {
@@ -430,11 +447,6 @@ pub trait SensKernel: Kernel {
     fn param(&self, k: usize) -> f64;
     /// Every parameter is finite (the mechanism's `check_params`).
     fn check_params(&self) -> Result<(), Error>;
-    /// No angle parameter beyond the [`largest_precise_angle`](NewtonConfig::largest_precise_angle)
-    /// of `cfg` (the compiled [`Mechanism::check_param_angles`], whose error names the
-    /// parameter, its value and the bound): a design whose angle parameter is so large that an
-    /// angle added to it is lost to rounding solves other equations than the declared ones.
-    fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error>;
     /// `f` called with this kernel's parameters set to `p` (one value per parameter, in
     /// declaration order): a compiled mechanism gives `f` a copy with those values (so that a
     /// kernel shared between threads is never changed); a kernel over one workspace (a run-time
@@ -525,9 +537,6 @@ where
     }
     fn check_params(&self) -> Result<(), Error> {
         self.0.check_params()
-    }
-    fn check_param_angles(&self, cfg: &NewtonConfig) -> Result<(), Error> {
-        self.0.check_param_angles(cfg)
     }
     /// `f` called with a copy of the mechanism with the parameters `p`
     /// ([`Sensitivities::with_params_flat`]); `p` must have `NP` values.

@@ -49,12 +49,14 @@ pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    m.check_param_angles(cfg)?;
+    // `assembly_modes_of` refuses an angle parameter too large to resolve.
     assembly_modes_of(&Compiled(m), x, starts, cfg)
 }
 
 /// [`assembly_modes`] over any [`Kernel`]: a compiled mechanism's, or one whose sizes are known
-/// at run time (`kinloop_model::Model::assembly_modes`). The errors of [`assembly_modes`], and
+/// at run time (`kinloop_model::Model::assembly_modes`). The errors of [`assembly_modes`] (an
+/// angle parameter beyond the `largest_precise_angle` of `cfg` among them:
+/// [`Kernel::check_param_angles`]), and
 /// [`Error::InvalidArgument`] for an `x` of another size than the kernel's inputs.
 pub fn assembly_modes_of<K: Kernel>(
     m: &K,
@@ -64,6 +66,7 @@ pub fn assembly_modes_of<K: Kernel>(
 ) -> Result<Vec<KinOf<K>>, Error> {
     check_sizes(m, "assembly_modes", &[x], &[])?;
     cfg.validate()?;
+    m.check_param_angles(cfg)?;
     // The starts are solved one after another: a count no analysis takes would run for hours.
     crate::analysis::check_sample_count("starts", starts).map_err(Error::InvalidArgument)?;
     let n = m.dims().n();

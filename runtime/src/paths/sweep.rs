@@ -288,7 +288,9 @@ where
     S: From<KinOf<K>>,
 {
     /// [`Sweep::new`] over any kernel: `from`, `to` and `guess` of the kernel's sizes (a
-    /// mismatch is an `Error::InvalidArgument`).
+    /// mismatch is an `Error::InvalidArgument`). An angle parameter beyond the
+    /// [`largest_precise_angle`](crate::NewtonConfig::largest_precise_angle) of the sweep's
+    /// configuration ([`Kernel::check_param_angles`]) is the first item's error.
     pub fn over(m: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>) -> Result<Self, Error> {
         let d = m.dims();
         check_sizes(&m, "a sweep", &[&from, &to], &[&guess])?;
@@ -672,6 +674,12 @@ where
         if self.too_long.is_some() {
             self.stop();
             return self.too_long.take().map(Err);
+        }
+        // Once a sweep, under the configuration it runs with (a sweep over any kernel, made by
+        // `over` and configured after: the kernel-level algorithms have no other entry).
+        if let Err(e) = self.m.check_param_angles(&self.cfg.newton) {
+            self.stop();
+            return Some(Err(e));
         }
         Some(self.first_sample().map(|()| self.cur()))
     }

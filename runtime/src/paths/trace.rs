@@ -218,14 +218,15 @@ pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
 where
     M: Mechanism<N, NI, NO>,
 {
-    m.check_param_angles(&opts.newton.unwrap_or(m.solver_config().newton))?;
+    // `trace_curve_of` refuses an angle parameter too large to resolve.
     trace_curve_of(&Compiled(m), from, to, guess, opts)
 }
 
 /// [`trace_curve`] over any [`Kernel`]: a compiled mechanism's ([`Compiled`]) or one whose sizes
 /// are known at run time (`kinloop_model::Model::trace_curve`). `from`, `to` and `guess` of the
 /// kernel's sizes (a mismatch is an `Error::InvalidArgument`); the corrector's configuration is
-/// [`TraceConfig::newton`], or the kernel's ([`Kernel::solver_config`]).
+/// [`TraceConfig::newton`], or the kernel's ([`Kernel::solver_config`]), whose
+/// `largest_precise_angle` an angle parameter must not exceed ([`Kernel::check_param_angles`]).
 pub fn trace_curve_of<K: Kernel>(
     m: &K,
     from: X<K>,
@@ -237,6 +238,7 @@ pub fn trace_curve_of<K: Kernel>(
     check_sizes(m, "trace_curve", &[&from, &to], &[&guess])?;
     let cfg = opts.newton.unwrap_or(m.solver_config().newton);
     cfg.validate()?;
+    m.check_param_angles(&cfg)?;
     let path = Path::new(from.clone(), to);
     if !(path.len > 0.0 && path.len.is_finite()) {
         return Err(Error::InvalidArgument(
