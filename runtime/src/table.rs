@@ -174,26 +174,55 @@ struct Lines<R> {
     inner: R,
     /// The bytes read so far.
     read: u64,
-    /// The offsets of the newlines read so far, in order.
+    /// The offsets of the line ends read so far, in order: an LF, or a CR alone (see
+    /// [`line_ends`]).
     ends: Vec<u64>,
+    /// A CR that ended the last read: a line end of its own unless the next read starts with
+    /// an LF (a CRLF split between two reads, whose end is its LF).
+    cr: Option<u64>,
 }
 
 impl<R> Lines<R> {
     fn new(inner: R) -> Self {
-        Lines { inner, read: 0, ends: Vec::new() }
+        Lines { inner, read: 0, ends: Vec::new(), cr: None }
     }
 
-    /// The line (from 1) that the byte at `offset` is on, among those read.
+    /// The line (from 1) that the byte at `offset` is on, among those read. (A CR held back
+    /// in `cr` is the last byte read: on its own line, whatever follows it.)
     fn line_of(&self, offset: u64) -> u64 {
         self.ends.partition_point(|&end| end < offset) as u64 + 1
     }
 }
 
+/// The offsets in `bytes` of its line ends, as an editor counts them whatever the file's
+/// convention (the csv crate reads the three alike): an LF (`\n`, and `\r\n`'s LF: one line
+/// end, not two) and a CR not followed by an LF (`\r` alone, an old Mac file's). A CR at the
+/// very end, whose next byte is not known, is not listed: `ends_with_cr` says there is one.
+fn line_ends(bytes: &[u8]) -> impl Iterator<Item = usize> + '_ {
+    let lone_cr = |k: usize| bytes[k] == b'\r' && bytes.get(k + 1).is_some_and(|&b| b != b'\n');
+    (0..bytes.len()).filter(move |&k| bytes[k] == b'\n' || lone_cr(k))
+}
+
+/// Whether `bytes` ends with a CR ([`line_ends`] leaves it out).
+fn ends_with_cr(bytes: &[u8]) -> bool {
+    bytes.last() == Some(&b'\r')
+}
+
 impl<R: io::Read> io::Read for Lines<R> {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         let n = self.inner.read(buf)?;
-        let at = self.read;
-        self.ends.extend(buf[..n].iter().enumerate().filter(|(_, b)| **b == b'\n').map(|(k, _)| at + k as u64));
+        let (at, bytes) = (self.read, &buf[..n]);
+        // The CR that ended the last read is a line end unless this read starts its CRLF (or
+        // there is nothing more: the end of the input).
+        if let Some(cr) = self.cr.take()
+            && bytes.first() != Some(&b'\n')
+        {
+            self.ends.push(cr);
+        }
+        self.ends.extend(line_ends(bytes).map(|k| at + k as u64));
+        if ends_with_cr(bytes) {
+            self.cr = Some(at + n as u64 - 1);
+        }
         self.read += n as u64;
         Ok(n)
     }
@@ -220,7 +249,9 @@ fn parse_row(record: &csv::ByteRecord, columns: usize) -> Result<Vec<f64>, BadRo
 /// csv crate gives a record is the end of the one before, blank lines between included.)
 #[cold]
 fn bad_row(record: &csv::ByteRecord, bad: BadRow, last: u64, columns: &[String]) -> io::Error {
-    let newlines = |k: usize| record.iter().skip(k).map(|f| f.iter().filter(|b| **b == b'\n').count() as u64).sum();
+    // A field's own line ends: a CR at its end too (the byte after it, a quote, is no LF).
+    let in_field = |f: &[u8]| (line_ends(f).count() + usize::from(ends_with_cr(f))) as u64;
+    let newlines = |k: usize| record.iter().skip(k).map(in_field).sum();
     let line_from = |k: usize| usize::try_from(last.saturating_sub(newlines(k))).unwrap_or(usize::MAX);
     let k = match bad {
         BadRow::Field(k) => k,
@@ -479,7 +510,8 @@ impl Table {
     /// them). Header fields are trimmed as numbers are (`phi, x` has a column `x`). Errors are
     /// `InvalidData`: a field that is not a number (naming its line and column, and what it
     /// holds or that it is empty), a row of another length than the header (naming its line),
-    /// each line numbered as in the file (blank lines and the lines of quoted fields counted),
+    /// each line numbered as in the file (blank lines and the lines of quoted fields counted;
+    /// lines ended by LF, CRLF or CR alone, as the reader reads them),
     /// a column name that appears twice (naming it), or text that is not UTF-8.
     ///
     /// A table holds numbers alone: a file with a column of text is refused at its first row,

@@ -320,6 +320,51 @@ fn a_bad_field_is_named_by_its_line_in_the_file() {
     assert!(not_utf8.contains("CSV line 3: column `b` holds text that is not UTF-8"), "{not_utf8}");
 }
 
+/// A reader that hands over one byte a call: a CR at the end of one read and its LF at the
+/// start of the next, as a buffered file may split them.
+struct ByteAtATime<'a>(&'a [u8]);
+
+impl std::io::Read for ByteAtATime<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        match (self.0.split_first(), buf.first_mut()) {
+            (Some((&b, rest)), Some(slot)) => {
+                *slot = b;
+                self.0 = rest;
+                Ok(1)
+            }
+            _ => Ok(0),
+        }
+    }
+}
+
+/// The lines of a file are numbered alike whatever ends them: LF, CRLF (a spreadsheet's, one
+/// line end, not two) or CR alone (an old Mac file's, which the csv crate reads as line ends
+/// too). The texts of `a_bad_field_is_named_by_its_line_in_the_file` with each LF replaced,
+/// the lines counted there by hand; read whole and a byte at a time (a CRLF split between two
+/// reads). A CR-only file was named line 1 for every row, a quoted field over lines counted as
+/// one line.
+#[test]
+fn a_bad_field_s_line_is_counted_alike_for_lf_crlf_and_cr_line_ends() {
+    let cases = [
+        ("a,b\n\n1,2\n\n\n3,x\n", "CSV line 6: column `b` holds `x`"),
+        ("a,b\n\"1\n\n\",2\n3,x\n", "CSV line 5: column `b` holds `x`"),
+        ("a,b\n\"1\n\",x\n", "CSV line 3: column `b` holds `x`"),
+        ("a,b\n\n\n1,2,3\n", "CSV line 4: a row of 3 values"),
+        ("a,b\n\n1,x", "CSV line 3: column `b` holds `x`"),
+    ];
+    for (text, expected) in cases {
+        for end in ["\n", "\r\n", "\r"] {
+            let bytes = text.replace('\n', end).into_bytes();
+            for (how, read) in
+                [("whole", Table::read_csv(&bytes[..])), ("bytewise", Table::read_csv(ByteAtATime(&bytes)))]
+            {
+                let err = read.unwrap_err().to_string();
+                assert!(err.contains(expected), "{how} {end:?} {text:?}: {err}");
+            }
+        }
+    }
+}
+
 /// A file as a spreadsheet saves it: a UTF-8 byte order mark before the header, lines ended
 /// by CRLF, a blank line at the end. The mark is not part of the first name, nor the CR of
 /// the last field's value: the same table as the plain file.
