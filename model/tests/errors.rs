@@ -769,3 +769,23 @@ fn the_kernel_level_functions_refuse_an_angle_parameter_beyond_the_precise_angle
     let stepped = simulate_steps_of(k, reduced, drive, [0.5, 1.0], 1.0, q, &run, |_, _| false);
     assert_eq!(kinematic(stepped.map(|_| ()).unwrap_err()), solved);
 }
+
+/// A four-bar whose rocker (the dyad's second link) is `1e-20` of its unit crank and coupler,
+/// at the input where the coupler's end sits on the rocker's pivot (exactly: frame 2 at 0;
+/// within rounding: frame 1 at `fl(π/3)`): every rocker angle closes the loop within the
+/// rounding of its size (`tests/solver/closed_form.rs` computes the loop in plain f64), so the
+/// read model's solve, on the runtime's closed-form dyad as the compiled one is, reports the
+/// same singular position in block 0. Both returned a rocker angle of rounding noise.
+#[test]
+fn a_rocker_below_the_rounding_of_its_loop_is_singular_read_and_compiled_alike() {
+    for (frame, phi) in [(2.0, 0.0), (1.0, std::f64::consts::PI / 3.0)] {
+        let compiled = fx::FourBar { a: 1.0, b: 1.0, c: 1e-20, d: frame };
+        let solved = compiled.solve(phi).map(|_| ()).unwrap_err();
+        assert!(matches!(solved, Error::Singular { .. }), "frame {frame}: {solved:?}");
+        let mut model = read(fx::FOUR_BAR_TEXT);
+        set(&mut model, &[("a", 1.0), ("b", 1.0), ("c", 1e-20), ("d", frame)]);
+        let step = model.solve(&[phi]).map(|_| ()).unwrap_err();
+        let explained = model.explain(&[phi], &[0.5, 1.5], &NewtonConfig::default(), step);
+        assert_eq!(explained, solved, "frame {frame}");
+    }
+}

@@ -650,3 +650,58 @@ fn newton_towards_a_limit_position_agrees_with_the_closed_form() {
     }
     assert!(smallest < 1e-7, "the walk must reach the limit's neighbourhood: smallest pivot ratio {smallest:e}");
 }
+
+/// The largest miss, over `samples` angles of the rocker `c`, of the loop of the four-bar
+/// `[a, b, c, d]` at the input `phi` with the coupler at `beta`, relative to the dyad's size
+/// `b + c + |e|` (`e` from the rocker's pivot to the crank pin): computed here in plain f64 from
+/// the loop `a @ phi + b @ beta == (d, 0) + c @ gamma`, independent of the solver.
+fn worst_miss_over_rocker_angles([a, b, c, d]: [f64; 4], phi: f64, beta: f64, samples: usize) -> f64 {
+    let e = (a * phi.cos() - d).hypot(a * phi.sin());
+    let size = b + c + e;
+    let miss = |gamma: f64| {
+        let x = a * phi.cos() + b * beta.cos() - d - c * gamma.cos();
+        let y = a * phi.sin() + b * beta.sin() - c * gamma.sin();
+        x.hypot(y)
+    };
+    (0..samples).map(|k| miss(TAU * k as f64 / samples as f64)).fold(0.0, f64::max) / size
+}
+
+/// A four-bar of unit crank and coupler whose rocker, the dyad's SECOND link, is `1e-20` or
+/// `1e-100` of them, at the input where the coupler's end sits on the rocker's pivot: exactly
+/// (frame 2, crank angle 0: the pin at `(1, 0)`, the pivot at `(2, 0)`, coupler along the frame)
+/// or within rounding (frame 1, `fl(π/3)`: the pin `1 - 9.9e-17` from the pivot). Every angle
+/// of the rocker then closes the loop to within `4 eps` of its size (computed in the test from
+/// the coupler's angle in plain f64, over 64 rocker angles), far within the tolerance: the
+/// rocker's angle is not determined, a singular position as for a short first link, in every
+/// unit. The point solve returned a position with the rocker's angle taken from rounding noise.
+#[test]
+fn a_rocker_shorter_than_the_rounding_of_its_loop_is_not_determined() {
+    let guess = [0.5, 1.5];
+    for scale in [1.0, 1e-3, 1e3] {
+        for rocker in [1e-20, 1e-100] {
+            for (frame, phi) in [(2.0, 0.0), (1.0, PI / 3.0)] {
+                let at = format!("scale {scale}, rocker {rocker:e}, frame {frame}, phi {phi}");
+                let links = [scale, scale, rocker * scale, frame * scale];
+                // The coupler from the pin to the rocker's pivot.
+                let beta = (-phi.sin()).atan2(frame - phi.cos());
+                let worst = worst_miss_over_rocker_angles(links, phi, beta, 64);
+                assert!(worst <= 4.0 * f64::EPSILON, "{at}: every rocker angle misses by {worst:e} at most");
+                let [a, b, c, d] = links;
+                let m = kinloop_fixtures::FourBar { a, b, c, d };
+                let cfg = NewtonConfig::default();
+                let results = [
+                    m.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q),
+                    m.position_flat(&[phi], &guess, &cfg).map(|(q, _)| q),
+                ];
+                for r in results {
+                    match r {
+                        Err(e @ Error::Singular { .. }) => {
+                            assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
+                        }
+                        other => panic!("{at}: {other:?}"),
+                    }
+                }
+            }
+        }
+    }
+}

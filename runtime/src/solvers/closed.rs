@@ -156,13 +156,14 @@ fn unreached(r: f64, c: f64) -> f64 {
 /// A dyad's circle intersection's failure `fail`, judged in the dyad's lengths, `links` `[e0,
 /// e1, l0², l1²]`, rather than in its equation's coefficients (products of two lengths, see
 /// [`dyad_of`]): where every angle of its first link closes it within the residual tolerance
-/// of its size ([`turns_freely`]), the angle is not determined, singular as [`undetermined`];
+/// of its size ([`turns_freely`]), or every angle of its second within the rounding
+/// ([`second_turns_freely`]), the angle is not determined, singular as [`undetermined`];
 /// otherwise one that cannot be assembled, with the residual [`dyad_gap`].
 #[cold]
 #[inline(never)]
 fn dyad_failure(fail: BlockFailure, links: [f64; 4], cfg: &NewtonConfig) -> BlockFailure {
     match fail {
-        BlockFailure::NoAssembly { .. } if turns_freely(links, cfg) => undetermined(cfg),
+        BlockFailure::NoAssembly { .. } if turns_freely(links, cfg) || second_turns_freely(links) => undetermined(cfg),
         BlockFailure::NoAssembly { row, iterations, evaluations, .. } => {
             BlockFailure::NoAssembly { row, iterations, evaluations, residual: dyad_gap(links) }
         }
@@ -188,6 +189,26 @@ fn turns_freely([e0, e1, l0_sq, l1_sq]: [f64; 4], cfg: &NewtonConfig) -> bool {
     worst <= tol * (l0 + l1 + e)
 }
 
+/// Whether a dyad of `links` `[e0, e1, l0², l1²]` closes within the rounding of its size
+/// `l0 + l1 + |e|` (one `eps` of it) at every angle of its SECOND link: the distance from the
+/// first link's centre to the second link's end ranges over `[||e| - l1|, |e| + l1]`, so the
+/// worst miss is the larger of `||e| - l1| - l0` and `|e| + l1 - l0` in magnitude (the test of
+/// [`turns_freely`] with the links swapped). That holds only where the second link is shorter
+/// than the rounding of the others and the first link's end lies on its centre to that
+/// rounding: a rocker of `1e-20` on a four-bar of size 1 whose coupler's end reaches the
+/// rocker's pivot. Its angle is then the direction of the rounding error of the first link's
+/// end (`-1.107` rad with a velocity analog of `-1.2e17`, or `pi / 2` where the triangle is
+/// exact in doubles), not the data's. Judged against the rounding, not the residual
+/// tolerance: a second link above the rounding has an angle the data give (the rocker of 1 on
+/// a parallelogram of 2e12, known to `eps 2e12`, 1e-3 rad), though every angle of it closes
+/// the loop within a tolerance of `1e-12`.
+fn second_turns_freely([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> bool {
+    let (l0, l1, e) = (l0_sq.sqrt(), l1_sq.sqrt(), e0.hypot(e1));
+    let worst = ((e - l1).abs() - l0).abs().max((e + l1 - l0).abs());
+    // Written so that a NaN fails.
+    worst <= f64::EPSILON * (l0 + l1 + e)
+}
+
 /// How far a dyad's two links (of lengths `l0`, `l1`) fall short of closing the triangle with
 /// their centres' offset `e`, given `links` `[e0, e1, l0², l1²]`, relative to the dyad's size
 /// `l0 + l1 + |e|`: the longest of the three less the other two, `2 max - (l0 + l1 + |e|)`,
@@ -208,8 +229,8 @@ fn dyad_gap([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> f64 {
 
 /// [`touching`] for a dyad's circle intersection whose circles miss (`d2 < 0`), judged in the
 /// dyad's lengths, `links` `[e0, e1, l0², l1²]`, as Newton judges its loop: where every angle of
-/// its first link closes it within the tolerance ([`turns_freely`]), singular as
-/// [`undetermined`]; where its links laid in line close it within the residual tolerance of its
+/// its first link closes it within the tolerance ([`turns_freely`]), or every angle of its
+/// second within the rounding ([`second_turns_freely`]), singular as [`undetermined`]; where its links laid in line close it within the residual tolerance of its
 /// size (its [`dyad_gap`] within it, at least `16 eps`), the limit position, offset `0`;
 /// otherwise one that cannot be assembled, with that gap as residual. [`touching`]'s own test is
 /// relative to the equation's `|c|`, about `l0 |e|`, a product of two of the three lengths, so
@@ -227,7 +248,7 @@ fn dyad_touching(d2: f64, r2: f64, c: f64, links: [f64; 4], cfg: &NewtonConfig) 
     if !(d2 < 0.0 && r2 >= f64::MIN_POSITIVE && readable(links)) {
         return touching(d2, r2, c, cfg).map_err(|f| dyad_failure(f, links, cfg));
     }
-    if turns_freely(links, cfg) {
+    if turns_freely(links, cfg) || second_turns_freely(links) {
         return Err(undetermined(cfg));
     }
     let gap = dyad_gap(links);
@@ -638,7 +659,8 @@ pub fn dyad_of(dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result
 
 /// [`dyad_of`]'s root offset where `d2` is negative or cancelled: recomputed from the triangle
 /// ([`dyad_d2`]), then [`root_offset`]'s, circles that miss judged in the dyad's lengths
-/// ([`dyad_touching`]).
+/// ([`dyad_touching`]); a triangle that closes with a second link below the rounding of the
+/// others ([`second_turns_freely`]) singular as [`undetermined`].
 #[cold]
 #[inline(never)]
 fn dyad_offset_cancelled(
@@ -652,6 +674,12 @@ fn dyad_offset_cancelled(
     let d2 = dyad_d2(d2, r2, links);
     // `root_offset`'s test, its failure the dyad's.
     if d2 >= 0.0 && r2 >= f64::MIN_POSITIVE {
+        // A triangle that closes, but whose second link is below the rounding of the others
+        // (a rocker of 1e-20 whose pivot the coupler's end reaches): its angle would be the
+        // rounding's. Tested here alone: such a triangle's `d2` always cancels.
+        if second_turns_freely(links) {
+            return Err(undetermined(cfg));
+        }
         Ok(root_offset_deferred(d2, flip))
     } else {
         dyad_touching(d2, r2, c, links, cfg)
