@@ -230,8 +230,9 @@ fn dyad_gap([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> f64 {
 /// [`touching`] for a dyad's circle intersection whose circles miss (`d2 < 0`), judged in the
 /// dyad's lengths, `links` `[e0, e1, l0², l1²]`, as Newton judges its loop: where every angle of
 /// its first link closes it within the tolerance ([`turns_freely`]), or every angle of its
-/// second within the rounding ([`second_turns_freely`]), singular as [`undetermined`]; where its links laid in line close it within the residual tolerance of its
-/// size (its [`dyad_gap`] within it, at least `16 eps`), the limit position, offset `0`;
+/// second within the rounding ([`second_turns_freely`]), singular as [`undetermined`]; where
+/// its links laid in line close it within the residual tolerance of its size (its
+/// [`dyad_gap`] within it, at least `16 eps`), the limit position, offset `0`;
 /// otherwise one that cannot be assembled, with that gap as residual. [`touching`]'s own test is
 /// relative to the equation's `|c|`, about `l0 |e|`, a product of two of the three lengths, so
 /// the miss it allowed scaled with the product of the two it does not hold over the third
