@@ -423,12 +423,15 @@ fn judge(option: &str, value: &str, code: Option<i32>, out: &str, err: &str) -> 
 
 #[test]
 fn wrong_arguments_are_refused_in_words_never_a_panic_or_a_hang() {
-    // The runs are independent processes: shared among workers (each with its own scratch
-    // directory, so that no two runs write the same output file at once) they take a fraction
-    // of the time on a machine of several cores.
+    // The runs are independent processes, shared among workers (each with its own scratch
+    // directory, so that no two runs write the same output file at once): each worker takes the
+    // next run not yet taken, so that the slow commands (a synthesis, a simulation) do not fall
+    // to one worker.
     let workers = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
+    let next = std::sync::atomic::AtomicUsize::new(0);
     let results: Vec<(usize, Vec<String>)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..workers).map(|w| scope.spawn(move || runs_of_worker(w, workers))).collect();
+        let next = &next;
+        let handles: Vec<_> = (0..workers).map(|w| scope.spawn(move || runs_of_worker(w, next))).collect();
         handles.into_iter().map(|h| h.join().expect("a worker")).collect()
     });
     let runs: usize = results.iter().map(|r| r.0).sum();
@@ -437,25 +440,45 @@ fn wrong_arguments_are_refused_in_words_never_a_panic_or_a_hang() {
     assert!(failures.is_empty(), "{} runs failed:\n{}", failures.len(), failures.join("\n"));
 }
 
-/// The runs of the commands `worker`, `worker + workers`, ... of [`bases`]: how many, and what
-/// was wrong with each that failed.
-fn runs_of_worker(worker: usize, workers: usize) -> (usize, Vec<String>) {
-    let s = Scratch::new(&format!("worker-{worker}"));
-    let mut failures = Vec::new();
-    let mut runs = 0;
-    for b in bases(&s).into_iter().skip(worker).step_by(workers) {
-        // The command line itself succeeds: the wrong values alone make its runs fail.
-        let (code, _, err) = run(&b.args);
-        assert_eq!(code, Some(0), "{:?}: {err}", b.args);
+/// One run of a command: its command line succeeding as given (`None`), or with one option's
+/// wrong value.
+struct Job {
+    args: Vec<String>,
+    wrong: Option<(&'static str, String)>,
+}
+
+/// Every run, in one order for every worker: each command as given, then with each wrong value.
+fn jobs(s: &Scratch) -> Vec<Job> {
+    let mut jobs = Vec::new();
+    for b in bases(s) {
         let declaration = b.args[1].clone();
         let param = first_param(&declaration);
         for (option, takes) in &b.options {
-            for value in values(*takes, &s, &declaration, &param) {
-                let args = with(&b.args, option, &value);
-                let (code, out, err) = run(&args);
+            for value in values(*takes, s, &declaration, &param) {
+                jobs.push(Job { args: with(&b.args, option, &value), wrong: Some((option, value)) });
+            }
+        }
+        jobs.push(Job { args: b.args, wrong: None });
+    }
+    jobs
+}
+
+/// The runs the worker `worker` takes from `next` (the index of the next run not yet taken):
+/// how many with a wrong value, and what was wrong with each that failed.
+fn runs_of_worker(worker: usize, next: &std::sync::atomic::AtomicUsize) -> (usize, Vec<String>) {
+    let s = Scratch::new(&format!("worker-{worker}"));
+    let jobs = jobs(&s);
+    let mut failures = Vec::new();
+    let mut runs = 0;
+    while let Some(job) = jobs.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed)) {
+        let (code, out, err) = run(&job.args);
+        match &job.wrong {
+            // The command line itself succeeds: the wrong values alone make its runs fail.
+            None => assert_eq!(code, Some(0), "{:?}: {err}", job.args),
+            Some((option, value)) => {
                 runs += 1;
-                if let Some(problem) = judge(option, &value, code, &out, &err) {
-                    failures.push(format!("kinloop {}: {problem}", shown(&args)));
+                if let Some(problem) = judge(option, value, code, &out, &err) {
+                    failures.push(format!("kinloop {}: {problem}", shown(&job.args)));
                 }
             }
         }
