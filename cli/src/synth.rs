@@ -14,7 +14,7 @@ use crate::{Failed, exit, params, progress};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{
-    Candidate, Constraints, Defect, Design, Search, SynthesisError, SynthesisReport, Task,
+    Candidate, Constraints, Defect, Design, Origin, Refused, Search, SynthesisError, SynthesisReport, Task,
 };
 use kinloop_runtime::{Number, QuantityKind};
 use std::f64::consts::TAU;
@@ -136,6 +136,15 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let text = if req.csv { csv(&report, &units) } else { table(&report, &units) };
     crate::output::text(&text, "the candidates")?;
     eprintln!("{}", summary(&report));
+    for r in &report.refused {
+        // The error again, from the refused start, for its inputs in the units written (the
+        // report's message has them in radians).
+        let message = match search.refine(&problem, &r.point) {
+            Err(SynthesisError::Kinematics(e)) => crate::solve::in_units(e, model.input_kinds(), req.deg).to_string(),
+            _ => r.message.clone(),
+        };
+        eprintln!("{}", refusal(&report.variables, r, &message));
+    }
     if let Some(note) = out_of_reach(&report, &rows, &units, req.path.is_some()) {
         eprintln!("{note}");
     }
@@ -548,9 +557,44 @@ fn summary(r: &SynthesisReport) -> String {
     )
 }
 
+/// The starts of one kind refused before their local solve, in one line: how many, why, and
+/// the first with its design variables by name and the error's `message`.
+fn refusal(variables: &[String], r: &Refused, message: &str) -> String {
+    let values: Vec<String> = variables.iter().zip(&r.point).map(|(n, v)| format!("{n}={}", Number(*v))).collect();
+    let origin = if r.origin == Origin::Seed { "seed" } else { "start" };
+    format!(
+        "  {} ({}), the first {origin} {} at {}: {}",
+        Count(r.count, "start"),
+        r.kind.describe(),
+        r.start,
+        values.join(", "),
+        message
+    )
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{csv_number, csv_text, value_reach};
+    use super::{csv_number, csv_text, refusal, value_reach};
+    use kinloop_runtime::synthesis::{Origin, RefusalKind, Refused};
+
+    /// A kind of refusal is written with its count, its first start's design variables by name
+    /// and its message: before, the summary said only how many could not be assembled.
+    #[test]
+    fn a_refusal_names_its_first_design_and_its_message() {
+        let r = Refused {
+            kind: RefusalKind::NoAssembly,
+            count: 3,
+            origin: Origin::Halton,
+            start: 7,
+            point: vec![55.0, 0.25],
+            message: "the mechanism cannot be assembled".into(),
+        };
+        let variables = ["a".to_string(), "e".to_string()];
+        assert_eq!(
+            refusal(&variables, &r, &r.message),
+            "  3 starts (cannot be assembled), the first start 7 at a=55, e=0.25: the mechanism cannot be assembled"
+        );
+    }
 
     /// The CSV's numbers are written as the command line's other CSVs write them: a negative
     /// zero as `0` (it was `-0.0`, where the sweeps' and the tables' CSVs write `0`), every

@@ -281,6 +281,11 @@ fn usage_errors_and_no_candidate_have_their_exit_codes() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("no valid candidate"), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).starts_with("rank"));
+    // Why: both refused as unassembled, the first (start 0) with its crank and the message, at
+    // the first target's input in degrees as given (0.3 rad), not in radians.
+    let why = "  2 starts (cannot be assembled), the first start 0 at a=";
+    let at = format!("cannot be assembled in `CouplerFourBar` at phi = {} ", 0.3f64.to_degrees());
+    assert!(stderr(&o).contains(why) && stderr(&o).contains(&at), "{}", stderr(&o));
     // One start is counted in the singular in the summary.
     let o = run(&["--path", "p", "--deg", "--vary", "a=10..11", "--starts", "1"]);
     assert!(stderr(&o).contains("1 start: 0 valid"), "{}", stderr(&o));

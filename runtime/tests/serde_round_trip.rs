@@ -251,6 +251,7 @@ fn a_synthesis_report_with_non_finite_values_reads_back_exactly() {
         starts: 0..4,
         seeds: 0,
         unassembled: 2,
+        refused: Vec::new(),
         converged: 0,
         valid: 0,
         rejected: Rejections { link_ratio: 2, ..Rejections::default() },

@@ -154,6 +154,84 @@ fn designs_that_never_assemble_are_counted_not_fatal() {
     assert!(Search::default().refine(&problem, &[55.0, 1.5]).is_err());
 }
 
+/// Designs refused before their local solve are reported by the kind of error, each kind with
+/// its count and its first design and message (what `refine` from it says). Before, they were
+/// only counted in `unassembled`. Which design is refused for which reason is independent of
+/// kinloop: `a` beyond `b + c + d` (here 5.5 + 3) cannot reach the rocker's circle at any crank
+/// angle, `a - d > b + c`; `|alpha|` of 1e80 is beyond the largest angle the problem resolves.
+#[test]
+fn refused_designs_are_reported_by_kind_with_their_first_design() {
+    use kinloop::synthesis::{Origin, RefusalKind};
+    let design = Design::new().var("a", 0.5, 60.0).var("alpha", -1e80, 1e80);
+    let problem = Problem::new(CouplerFourBar::default(), &design, &three()).unwrap();
+    // Seeds, in order: angle beyond, unassembled, assembled (1 + 3 >= 2.5 + ... reaches at every
+    // angle: |a - d| = 2 and a + d = 4 lie within [|b - c|, b + c] = [0.5, 5.5]), both, unassembled.
+    let seeds = vec![vec![1.0, 1e80], vec![55.0, 0.6], vec![1.0, 0.6], vec![50.0, -1e80], vec![58.0, 0.6]];
+    let search = Search::default().with_starts(0..0).with_seeds(seeds);
+    let report = search.run(&problem).unwrap();
+    assert_eq!(report.unassembled, 4, "{report:#?}");
+    let kinds: Vec<_> = report.refused.iter().map(|r| (r.kind, r.count, r.origin, r.start)).collect();
+    assert_eq!(
+        kinds,
+        [(RefusalKind::NoAssembly, 2, Origin::Seed, 1), (RefusalKind::InvalidArgument, 2, Origin::Seed, 0)],
+        "{report:#?}"
+    );
+    assert_eq!(
+        (report.refused[0].point.as_slice(), report.refused[1].point.as_slice()),
+        (&[55.0, 0.6][..], &[1.0, 1e80][..])
+    );
+    // Each message is the refinement's from that design.
+    for r in &report.refused {
+        let e = search.refine(&problem, &r.point).unwrap_err();
+        assert_eq!(e.to_string(), format!("kinematics failed: {}", r.message));
+    }
+    assert!(report.refused[1].message.contains("`alpha`"), "{}", report.refused[1].message);
+    let shown = report.refused[0].to_string();
+    assert!(shown.starts_with("2 refused (cannot be assembled), first seed 1 at [55, 0.6]: "), "{shown}");
+    assert_eq!(search.par_run(&problem).unwrap(), report);
+}
+
+/// A search that holds its starts as keys (more than 4096) reports the refusals of its parts
+/// merged: every start of a crank far too long for the rest refused as unassembled, the first
+/// (start 0) the example, solved again where it was held as a key.
+#[test]
+fn refusals_held_as_keys_are_the_merged_parts_refusals() {
+    use kinloop::synthesis::{Origin, RefusalKind};
+    let design = Design::new().var("a", 50.0, 60.0).var("e", 1.0, 2.0);
+    let problem = Problem::new(CouplerFourBar::default(), &design, &three()).unwrap();
+    let search = Search::default().with_keep(1);
+    let whole = search.clone().with_starts(0..4200).run(&problem).unwrap();
+    let first = search.clone().with_starts(0..2100).run(&problem).unwrap();
+    let second = search.clone().with_starts(2100..4200).run(&problem).unwrap();
+    let merged = first.merge(second, &search);
+    assert_eq!(whole.refused, merged.refused);
+    assert_eq!(whole.refused.len(), 1, "{:#?}", whole.refused);
+    let r = &whole.refused[0];
+    assert_eq!((r.kind, r.count, r.origin, r.start), (RefusalKind::NoAssembly, 4200, Origin::Halton, 0));
+    assert_eq!(r.point, search.start(&problem, 0));
+}
+
+/// An island none of whose members can be assembled (every crank far too long: `a - d > b + c`)
+/// reports its members to polish as refused, by the first members' reason, the first member
+/// of its last generation the example (a design that cannot reach, `a - d > b + c`).
+#[test]
+fn an_island_of_unassembled_members_reports_why() {
+    use kinloop::synthesis::{DeConfig, Global, Origin, RefusalKind};
+    let design = Design::new().var("a", 50.0, 60.0).var("e", 1.0, 2.0);
+    let problem = Problem::new(CouplerFourBar::default(), &design, &three()).unwrap();
+    let de = DeConfig::default().with_population(6).with_generations(2).with_polish(2);
+    let search = Search::default().with_global(Global::DifferentialEvolution(de)).with_starts(0..1);
+    let report = search.run(&problem).unwrap();
+    assert_eq!((report.unassembled, report.candidates.len()), (2, 0));
+    // The population of 6 and 2 generations of 6 trials, and the 2 members evaluated again for
+    // their reasons.
+    assert_eq!(report.evaluations, 6 + 2 * 6 + 2);
+    let kinds: Vec<_> = report.refused.iter().map(|r| (r.kind, r.count, r.origin, r.start)).collect();
+    assert_eq!(kinds, [(RefusalKind::NoAssembly, 2, Origin::Evolution, 0)], "{report:#?}");
+    let [a, e] = report.refused[0].point[..] else { panic!("{report:#?}") };
+    assert!((50.0..=60.0).contains(&a) && (1.0..=2.0).contains(&e) && a - 3.0 > 3.0 + 2.5, "{a}, {e}");
+}
+
 #[test]
 fn a_parameter_vector_of_another_length_is_an_error_not_a_panic() {
     use kinloop::{CompiledSens, Error, SensKernel};

@@ -54,6 +54,7 @@ fn report_of(variables: &[&str]) -> SynthesisReport {
         starts: 0..0,
         seeds: 0,
         unassembled: 0,
+        refused: Vec::new(),
         converged: 0,
         valid: 0,
         rejected: Rejections::default(),

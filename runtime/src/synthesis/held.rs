@@ -14,6 +14,7 @@
 //! 88 MB (whole candidates, at 2 KB a start, would take about 400 MB).
 
 use super::candidate::{Candidate, Defect, Origin};
+use super::refusal::{RefusalKind, Refused};
 use crate::analysis::optimize::OptimizerStop;
 
 /// A search holds keys, not whole candidates, past this many Halton starts (and past 64
@@ -170,4 +171,34 @@ pub(super) fn distinct<T: Ranked>(mut all: Vec<T>, bounds: &[(f64, f64)], distin
         }
     }
     out
+}
+
+/// A refused seed or start as a search holds it until its report: whole, or (a Halton start of
+/// a search that holds keys) its kind and index alone, solved again for its design and message
+/// where it is the first of its kind.
+#[derive(Clone, Debug)]
+pub(super) enum HeldRefusal {
+    /// The whole refusal (boxed: the kind alone is a fraction of its size).
+    Whole(Box<Refused>),
+    /// A Halton start's kind.
+    Key { kind: RefusalKind, start: usize },
+}
+
+impl HeldRefusal {
+    /// `r` held whole, or as its kind where `key` is set and `r` is a Halton start's.
+    pub(super) fn of(r: Refused, key: bool) -> HeldRefusal {
+        if key && r.origin == Origin::Halton {
+            HeldRefusal::Key { kind: r.kind, start: r.start }
+        } else {
+            HeldRefusal::Whole(Box::new(r))
+        }
+    }
+
+    /// The kind of error that refused it.
+    pub(super) fn kind(&self) -> RefusalKind {
+        match self {
+            HeldRefusal::Whole(r) => r.kind,
+            HeldRefusal::Key { kind, .. } => *kind,
+        }
+    }
 }

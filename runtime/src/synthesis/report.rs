@@ -3,6 +3,7 @@
 
 use super::SynthesisError;
 use super::candidate::{Candidate, Defect};
+use super::refusal::Refused;
 use crate::metrics::GrashofClass;
 use crate::table::Table;
 use std::ops::Range;
@@ -33,8 +34,15 @@ pub struct SynthesisReport {
     /// cannot be assembled at every target (no local solve), or whose angle parameter is too
     /// large to resolve (beyond the problem's `largest_precise_angle`: the error
     /// [`Search::refine`](super::Search::refine) from that start gives). With the local solves
-    /// that ran, they count every seed and start (or `polish` per island).
+    /// that ran, they count every seed and start (or `polish` per island). By kind:
+    /// [`SynthesisReport::refused`].
     pub unassembled: usize,
+    /// The [`unassembled`](SynthesisReport::unassembled) by the kind of error that refused
+    /// them, one entry per kind met in the order of [`RefusalKind`](super::RefusalKind), each
+    /// with its count (they add up to `unassembled`) and its first design and message. (Read
+    /// from JSON without it: none.)
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub refused: Vec<Refused>,
     /// Local solves that met the tolerance (residual or step).
     pub converged: usize,
     /// Local solves whose result is valid (no defect).
@@ -214,6 +222,14 @@ mod tests {
             starts: 0..16,
             seeds: 1,
             unassembled: 2,
+            refused: vec![crate::synthesis::Refused {
+                kind: crate::synthesis::RefusalKind::InvalidArgument,
+                count: 2,
+                origin: Origin::Halton,
+                start: 5,
+                point: vec![1.0, 1e80],
+                message: "the angle parameter `b` is too large".into(),
+            }],
             converged: 10,
             valid: 0,
             rejected: Rejections { order: 1, circuit: 13, ..Rejections::default() },

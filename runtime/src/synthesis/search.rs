@@ -9,9 +9,10 @@ use super::candidate::{Candidate, Origin};
 use super::error::SynthesisError;
 use super::evolution::{DeConfig, Global, IslandRng, best, evolve};
 use super::halton::Halton;
-use super::held::{Held, KEYS_FROM, distinct};
+use super::held::{Held, HeldRefusal, KEYS_FROM, distinct};
 use super::local::LocalConfig;
 use super::problem::ProblemOf;
+use super::refusal::{RefusalKind, Refused};
 use super::report::{Rejections, SynthesisReport};
 use super::resolve::Inputs;
 use crate::mechanism::kernel::SensKernel;
@@ -79,12 +80,12 @@ enum Job {
     Island(usize, DeConfig),
 }
 
-/// The candidates of one job (`None`: could not be assembled) and the evaluations its global
-/// stage made beyond their local solves.
-type Solved = (Vec<Option<Candidate>>, usize);
+/// The candidates of one job (or why one was refused before its local solve) and the
+/// evaluations its global stage made beyond their local solves.
+type Solved = (Vec<Result<Candidate, Refused>>, usize);
 
 /// [`Solved`] as the search holds it until its report (see [`Held`]).
-type Found = (Vec<Option<Held>>, usize);
+type Found = (Vec<Result<Held, HeldRefusal>>, usize);
 
 impl Search {
     /// Sets [`Search::starts`].
@@ -236,13 +237,17 @@ impl Search {
         z
     }
 
-    /// The local solve from `z0`, verified (`None` where `z0` cannot be assembled).
-    fn solve<K>(&self, problem: &ProblemOf<K>, z0: Vec<f64>, origin: Origin, index: usize) -> Option<Candidate>
+    /// The local solve from `z0`, verified; refused, with the reason, where `z0` cannot be
+    /// evaluated (it cannot be assembled at a target, or its angle parameter is too large).
+    fn solve<K>(&self, problem: &ProblemOf<K>, z0: Vec<f64>, origin: Origin, index: usize) -> Result<Candidate, Refused>
     where
         K: SensKernel,
     {
-        let (z, e, report) = problem.local(z0, &self.local).ok()?;
-        problem.verify(origin, index, z, e, report).ok()
+        let refused = |e, z: Vec<f64>| Refused::one(&e, origin, index, z);
+        let start = z0.clone();
+        let (z, e, report) = problem.local(z0, &self.local).map_err(|e| refused(e, start))?;
+        let point = z.clone();
+        problem.verify(origin, index, z, e, report).map_err(|e| refused(e, point))
     }
 
     /// A point clamped into the bounds of the unknowns.
@@ -266,12 +271,12 @@ impl Search {
             // A point that cannot be assembled costs its one evaluation.
             Job::Seed(k) => {
                 let c = self.solve(problem, Self::clamped(problem, &self.seeds[k]), Origin::Seed, k);
-                let unassembled = usize::from(c.is_none());
+                let unassembled = usize::from(c.is_err());
                 (vec![c], unassembled)
             }
             Job::Start(i) => {
                 let c = self.solve(problem, self.start(problem, i), Origin::Halton, i);
-                let unassembled = usize::from(c.is_none());
+                let unassembled = usize::from(c.is_err());
                 (vec![c], unassembled)
             }
             Job::Island(i, de) => self.island(problem, i, &de, batch),
@@ -280,8 +285,8 @@ impl Search {
 
     /// Island `i`: its population from the Halton points `i * population ..` (free inputs at
     /// random in all members but the first), evolved, its
-    /// best `polish` members solved locally (a missing member, where fewer could be assembled,
-    /// is a `None`).
+    /// best `polish` members solved locally (where fewer could be assembled, the first members
+    /// that could not stand for the missing ones, refused with their reasons).
     fn island<K>(
         &self,
         problem: &ProblemOf<K>,
@@ -314,10 +319,34 @@ impl Search {
         let done = self.local.tol * problem.scale;
         let evaluations = de.population + evolve(&mut pop, &mut fit, (&lo, &hi), de, &mut rng, done, batch);
         let chosen = best(&fit, de.polish);
-        let mut found: Vec<Option<Candidate>> =
+        let mut found: Vec<Result<Candidate, Refused>> =
             chosen.iter().map(|&k| self.solve(problem, pop[k].clone(), Origin::Evolution, island)).collect();
-        found.resize(de.polish, None);
+        let missing = de.polish.saturating_sub(found.len());
+        let unassembled: Vec<usize> = (0..pop.len()).filter(|&k| !fit[k].is_finite()).take(missing).collect();
+        // Each evaluated again for its reason: one evaluation more apiece.
+        let evaluations = evaluations + unassembled.len();
+        found.extend(unassembled.into_iter().map(|k| Err(Self::refusal(problem, &pop[k], island))));
         (found, evaluations)
+    }
+
+    /// Why the member `z` of island `island`, whose residual norm the evolution found not
+    /// finite, is refused: the error evaluating it, or its norm not finite.
+    fn refusal<K>(problem: &ProblemOf<K>, z: &[f64], island: usize) -> Refused
+    where
+        K: SensKernel,
+    {
+        let point = z.to_vec();
+        match problem.norm_at(z) {
+            Err(e) => Refused::one(&e, Origin::Evolution, island, point),
+            Ok(norm) => Refused {
+                kind: RefusalKind::NotFinite,
+                count: 1,
+                origin: Origin::Evolution,
+                start: island,
+                point,
+                message: format!("the residual norm is {norm}"),
+            },
+        }
     }
 
     /// The residual norm at `z`, `inf` where the design cannot be assembled at every target:
@@ -429,7 +458,8 @@ impl Search {
 
     /// A job's candidates as the search holds them: as keys where `keys` is set (see [`Held`]).
     fn hold((candidates, evaluations): Solved, keys: bool) -> Found {
-        (candidates.into_iter().map(|c| c.map(|c| Held::of(c, keys))).collect(), evaluations)
+        let held = candidates.into_iter().map(|c| c.map(|c| Held::of(c, keys)).map_err(|r| HeldRefusal::of(r, keys)));
+        (held.collect(), evaluations)
     }
 
     /// Counts, ranks and removes duplicates (in job order, so that the result does not depend
@@ -446,18 +476,28 @@ impl Search {
             starts: self.starts.clone(),
             seeds: if self.starts.start == 0 { self.seeds.len() } else { 0 },
             unassembled: 0,
+            refused: Vec::new(),
             converged: 0,
             valid: 0,
             rejected: Rejections::default(),
             evaluations: 0,
         };
         let mut all = Vec::new();
+        // Per kind, its count and its first refusal (jobs in order: seeds, then by index).
+        let mut refused: Vec<(usize, HeldRefusal)> = Vec::new();
         for (candidates, evaluations) in found {
             report.evaluations += evaluations;
             for c in candidates {
-                let Some(c) = c else {
-                    report.unassembled += 1;
-                    continue;
+                let c = match c {
+                    Ok(c) => c,
+                    Err(r) => {
+                        report.unassembled += 1;
+                        match refused.iter_mut().find(|(_, first)| first.kind() == r.kind()) {
+                            Some((count, _)) => *count += 1,
+                            None => refused.push((1, r)),
+                        }
+                        continue;
+                    }
                 };
                 let (local_evaluations, converged) = c.local();
                 report.evaluations += local_evaluations;
@@ -475,7 +515,7 @@ impl Search {
             .map(|h| match h {
                 Held::Whole(c) => Ok(*c),
                 Held::Key(k) => {
-                    self.solve(problem, self.start(problem, k.start), Origin::Halton, k.start).ok_or_else(|| {
+                    self.solve(problem, self.start(problem, k.start), Origin::Halton, k.start).map_err(|_| {
                         SynthesisError::Mismatch(format!(
                             "start {}, solved again for the report, gave no design where it gave one before: the \
                              problem's solves are not deterministic",
@@ -485,7 +525,30 @@ impl Search {
                 }
             })
             .collect::<Result<_, _>>()?;
+        for (count, first) in refused {
+            Refused::add(&mut report.refused, Refused { count, ..self.first_refused(problem, first)? });
+        }
         Ok(report)
+    }
+
+    /// A kind's first refusal whole: a Halton start held as its kind solved again (refused the
+    /// same way: a start depends on its index alone).
+    fn first_refused<K>(&self, problem: &ProblemOf<K>, first: HeldRefusal) -> Result<Refused, SynthesisError>
+    where
+        K: SensKernel,
+    {
+        match first {
+            HeldRefusal::Whole(r) => Ok(*r),
+            HeldRefusal::Key { kind, start } => {
+                match self.solve(problem, self.start(problem, start), Origin::Halton, start) {
+                    Err(r) if r.kind == kind => Ok(r),
+                    _ => Err(SynthesisError::Mismatch(format!(
+                        "start {start}, solved again for the report, was not refused as it was before: the problem's \
+                     solves are not deterministic"
+                    ))),
+                }
+            }
+        }
     }
 
     /// Runs the local solve from `z0` (the search's unknowns, see [`ProblemOf`]; clamped into
@@ -523,6 +586,9 @@ impl SynthesisReport {
         self.starts = self.starts.start.min(other.starts.start)..self.starts.end.max(other.starts.end);
         self.seeds += other.seeds;
         self.unassembled += other.unassembled;
+        for r in other.refused {
+            Refused::add(&mut self.refused, r);
+        }
         self.converged += other.converged;
         self.valid += other.valid;
         self.rejected.add(&other.rejected);
@@ -567,6 +633,7 @@ mod tests {
             starts,
             seeds: 0,
             unassembled: 0,
+            refused: Vec::new(),
             converged: 0,
             valid: 0,
             rejected: Rejections::default(),
