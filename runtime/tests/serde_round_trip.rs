@@ -256,6 +256,7 @@ fn a_synthesis_report_with_non_finite_values_reads_back_exactly() {
         valid: 0,
         rejected: Rejections { link_ratio: 2, ..Rejections::default() },
         evaluations: 9,
+        four_bar: true,
     };
     let back = round_trip(&report);
     // The same values to the bit (NaN as any NaN: its payload is not kept), `Some` and `None`

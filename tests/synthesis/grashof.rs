@@ -121,6 +121,13 @@ fn the_class_is_a_column_of_the_table_and_names_are_checked() {
     let plain = Search::default().with_starts(0..2).run(&problem).unwrap();
     assert!(plain.table().unwrap().column("grashof").is_none());
     assert!(plain.best().unwrap().four_bar.is_none());
+    // Named, but no candidate (a crank too long for the rest, `a - d > b + c`): the columns
+    // still, as the problem's kind says, not as its candidates happen to.
+    let none = Problem::new(m, &Design::new().var("a", 50.0, 60.0), &task).unwrap();
+    let none = none.with_constraints(&Constraints::default().with_four_bar("d", "a", "b", "c")).unwrap();
+    let report = Search::default().with_starts(0..2).run(&none).unwrap();
+    assert_eq!((report.candidates.len(), report.four_bar), (0, true));
+    assert_eq!(report.table().unwrap().column("grashof"), Some(Vec::new()));
     // A name that is no parameter, and a link named twice.
     let e = problem.clone().with_constraints(&Constraints::default().with_four_bar("d", "a", "b", "q")).unwrap_err();
     assert!(matches!(&e, kinloop::synthesis::SynthesisError::UnknownVariable { name, .. } if name == "q"), "{e}");

@@ -47,7 +47,14 @@ fn progress_counts_every_start() {
 
 /// A report of no candidate over the design variables `variables`.
 fn report_of(variables: &[&str]) -> SynthesisReport {
+    four_bar_report_of(variables, false)
+}
+
+/// A report of no candidate over `variables`, of a problem that names its four-bar's links
+/// where `four_bar` is set.
+fn four_bar_report_of(variables: &[&str], four_bar: bool) -> SynthesisReport {
     SynthesisReport {
+        four_bar,
         variables: variables.iter().map(|v| v.to_string()).collect(),
         bounds: vec![(0.0, 1.0); variables.len()],
         candidates: Vec::new(),
@@ -65,7 +72,9 @@ fn report_of(variables: &[&str]) -> SynthesisReport {
 /// A design variable named as a column of the table's own is refused, naming it: the table
 /// named two columns alike, `column` finding the report's alone and `write_csv` refusing it.
 /// A column present only for four-bars with named links (`grashof`) is a name like any other
-/// where there are none.
+/// where the problem names none, and refused where it names them, whether or not a candidate
+/// was found: the table's columns, and whether it can be made, are the report's kind's alone.
+/// (Before, `grashof` was accepted for a four-bar problem of no candidate, or none that moves.)
 #[test]
 fn a_design_variable_named_as_a_column_of_the_table_is_refused() {
     for name in ["start", "valid", "max_error", "rms_error", "min_transmission", "evaluations"] {
@@ -75,4 +84,22 @@ fn a_design_variable_named_as_a_column_of_the_table_is_refused() {
     }
     let table = report_of(&["r", "grashof"]).table().unwrap();
     assert_eq!(table.columns[..4], ["start", "valid", "r", "grashof"]);
+    for name in ["grashof", "grashof_margin", "min_transmission_range"] {
+        let e = four_bar_report_of(&["r", name], true).table().unwrap_err();
+        assert_eq!(e, SynthesisError::ReportColumn { name: name.to_string() });
+    }
+    let table = four_bar_report_of(&["r"], true).table().unwrap();
+    let columns = [
+        "start",
+        "valid",
+        "r",
+        "max_error",
+        "rms_error",
+        "min_transmission",
+        "evaluations",
+        "grashof",
+        "grashof_margin",
+        "min_transmission_range",
+    ];
+    assert_eq!(table.columns, columns);
 }

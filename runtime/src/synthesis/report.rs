@@ -52,6 +52,12 @@ pub struct SynthesisReport {
     /// Evaluations of residuals and Jacobian over all seeds and starts (with differential
     /// evolution, its populations' too).
     pub evaluations: usize,
+    /// Whether the problem names the four links of a four-bar
+    /// ([`Constraints::with_four_bar`](super::Constraints::with_four_bar)): its
+    /// [`table`](SynthesisReport::table) has the four-bar's columns, whatever candidates were
+    /// found. (Read from JSON without it: `false`.)
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub four_bar: bool,
 }
 
 impl SynthesisReport {
@@ -126,11 +132,12 @@ impl Rejections {
 impl SynthesisReport {
     /// The candidates as a table, one row per candidate in rank order: `start`, `valid` (1 or 0),
     /// the design variables by name, `max_error`, `rms_error`, `min_transmission` (radians; NaN
-    /// where not asked), `evaluations` (of its local solve); where the candidates are four-bars
-    /// with named links ([`Constraints::with_four_bar`](super::Constraints::with_four_bar)) also
-    /// `grashof` (the class as a number: see [`grashof_code`]), `grashof_margin` and
-    /// `min_transmission_range` (radians, over the input's range). Write it with
-    /// [`Table::write_csv`] or [`Table::save_csv`].
+    /// where not asked), `evaluations` (of its local solve); where the problem names the links
+    /// of a four-bar ([`SynthesisReport::four_bar`]) also `grashof` (the class as a number: see
+    /// [`grashof_code`]; NaN for a candidate that is no four-bar that moves), `grashof_margin`
+    /// and `min_transmission_range` (radians, over the input's range). The columns, and whether
+    /// the table can be made, depend on the report's kind and its variables, not on which
+    /// candidates were found. Write it with [`Table::write_csv`] or [`Table::save_csv`].
     ///
     /// # Errors
     ///
@@ -147,7 +154,7 @@ impl SynthesisReport {
     /// # }
     /// ```
     pub fn table(&self) -> Result<Table, SynthesisError> {
-        let four_bar = self.candidates.iter().any(|c| c.four_bar.is_some());
+        let four_bar = self.four_bar;
         let mut own = vec!["start", "valid", "max_error", "rms_error", "min_transmission", "evaluations"];
         if four_bar {
             own.extend(["grashof", "grashof_margin", "min_transmission_range"]);
@@ -234,6 +241,7 @@ mod tests {
             valid: 0,
             rejected: Rejections { order: 1, circuit: 13, ..Rejections::default() },
             evaluations: 140,
+            four_bar: true,
         };
         let json = serde_json::to_string(&report).unwrap();
         let back: SynthesisReport = serde_json::from_str(&json).unwrap();

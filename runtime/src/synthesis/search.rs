@@ -481,6 +481,7 @@ impl Search {
             valid: 0,
             rejected: Rejections::default(),
             evaluations: 0,
+            four_bar: problem.checks.four_bar.is_some(),
         };
         let mut all = Vec::new();
         // Per kind, its count and its first refusal (jobs in order: seeds, then by index).
@@ -593,6 +594,8 @@ impl SynthesisReport {
         self.valid += other.valid;
         self.rejected.add(&other.rejected);
         self.evaluations += other.evaluations;
+        // Parts of one problem agree; either names the four-bar where one does.
+        self.four_bar |= other.four_bar;
         self
     }
 }
@@ -638,6 +641,7 @@ mod tests {
             valid: 0,
             rejected: Rejections::default(),
             evaluations: 0,
+            four_bar: false,
         }
     }
 
