@@ -7,6 +7,7 @@
 use crate::kin::Kin;
 use crate::number::Number;
 use crate::table_units;
+use std::collections::VecDeque;
 use std::io::{self, Write};
 use std::path::Path;
 
@@ -169,14 +170,20 @@ fn not_a_number(line: usize, field: &str, column: &str) -> io::Error {
 /// line of a byte offset as an editor numbers it: the csv crate's own line count of a record
 /// does not count the blank lines before it (a field on line 6 after blank lines 2, 4 and 5
 /// was on its "line 4").
-/// Eight bytes a line, against the eight of every number of the table read.
+///
+/// The line ends before the record being read are only counted ([`Lines::settle`]): it holds
+/// the offsets of those past its start alone, within what the csv crate reads ahead (its
+/// buffer, 8 KiB) and the record's own lines. It held every line end of the file, eight bytes
+/// a line, until the whole table was read.
 struct Lines<R> {
     inner: R,
     /// The bytes read so far.
     read: u64,
-    /// The offsets of the line ends read so far, in order: an LF, or a CR alone (see
+    /// The line ends before the offset last settled, counted.
+    before: u64,
+    /// The offsets of the line ends read past that offset, in order: an LF, or a CR alone (see
     /// [`line_ends`]).
-    ends: Vec<u64>,
+    ends: VecDeque<u64>,
     /// A CR that ended the last read: a line end of its own unless the next read starts with
     /// an LF (a CRLF split between two reads, whose end is its LF).
     cr: Option<u64>,
@@ -184,13 +191,23 @@ struct Lines<R> {
 
 impl<R> Lines<R> {
     fn new(inner: R) -> Self {
-        Lines { inner, read: 0, ends: Vec::new(), cr: None }
+        Lines { inner, read: 0, before: 0, ends: VecDeque::new(), cr: None }
     }
 
-    /// The line (from 1) that the byte at `offset` is on, among those read. (A CR held back
-    /// in `cr` is the last byte read: on its own line, whatever follows it.)
+    /// Counts the line ends before `offset` and forgets where they are: no line asked for
+    /// after this lies before it (each record read starts where the last ended).
+    fn settle(&mut self, offset: u64) {
+        while self.ends.front().is_some_and(|&end| end < offset) {
+            self.ends.pop_front();
+            self.before += 1;
+        }
+    }
+
+    /// The line (from 1) that the byte at `offset` is on, among those read; `offset` not
+    /// before the offset last settled. (A CR held back in `cr` is the last byte read: on its
+    /// own line, whatever follows it.)
     fn line_of(&self, offset: u64) -> u64 {
-        self.ends.partition_point(|&end| end < offset) as u64 + 1
+        self.before + self.ends.partition_point(|&end| end < offset) as u64 + 1
     }
 }
 
@@ -217,7 +234,7 @@ impl<R: io::Read> io::Read for Lines<R> {
         if let Some(cr) = self.cr.take()
             && bytes.first() != Some(&b'\n')
         {
-            self.ends.push(cr);
+            self.ends.push_back(cr);
         }
         self.ends.extend(line_ends(bytes).map(|k| at + k as u64));
         if ends_with_cr(bytes) {
@@ -522,8 +539,17 @@ impl Table {
     /// extremes of `kinloop extremes` (`column` and `unit`). Read them with a CSV reader (the
     /// `csv` crate, a spreadsheet).
     pub fn read_csv(r: impl io::Read) -> io::Result<Table> {
-        // Flexible: a ragged row is refused below, by its line in the file.
-        let mut input = csv::ReaderBuilder::new().has_headers(true).flexible(true).from_reader(Lines::new(r));
+        Self::read_csv_from(&mut Self::csv_reader(r))
+    }
+
+    /// The reader of [`Table::read_csv`]: flexible, so that a ragged row is refused by its
+    /// line in the file.
+    fn csv_reader<R: io::Read>(r: R) -> csv::Reader<Lines<R>> {
+        csv::ReaderBuilder::new().has_headers(true).flexible(true).from_reader(Lines::new(r))
+    }
+
+    /// [`Table::read_csv`] from its reader.
+    fn read_csv_from<R: io::Read>(input: &mut csv::Reader<Lines<R>>) -> io::Result<Table> {
         let header = input.headers().map_err(csv_error)?;
         let (columns, units): (Vec<String>, Vec<String>) = header.iter().map(table_units::read_header).unzip();
         check_distinct(&columns)?;
@@ -531,7 +557,12 @@ impl Table {
         let mut record = csv::ByteRecord::new();
         while input.read_byte_record(&mut record).map_err(csv_error)? {
             match parse_row(&record, t.columns.len()) {
-                Ok(values) => t.rows.push(values),
+                Ok(values) => {
+                    t.rows.push(values);
+                    // The next record starts here: the lines before it are only counted.
+                    let end = input.position().byte();
+                    input.get_mut().settle(end);
+                }
                 Err(bad) => {
                     // The reader stands just past the record's end: its last byte is on its last line.
                     let last = input.get_ref().line_of(input.position().byte().saturating_sub(1));
@@ -582,5 +613,35 @@ impl Table {
             }
         }
         r
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Table;
+
+    /// What the reader holds to number the lines stays within what the csv crate reads ahead
+    /// (its buffer, 8 KiB, a few thousand lines at most), however long the file: it held eight
+    /// bytes for every line of the file (a million lines, 8 MB) until the table was read. The
+    /// line numbers of errors are checked in `tests/csv_round_trip.rs`.
+    #[test]
+    fn the_line_ends_held_stay_within_the_read_ahead() {
+        let lines = 200_000;
+        let mut text = String::from("a,b\n");
+        for k in 0..lines {
+            text.push_str(if k % 3 == 0 {
+                "1,2\r\n"
+            } else if k % 3 == 1 {
+                "\n3,4\r"
+            } else {
+                "5,6\n"
+            });
+        }
+        let mut input = Table::csv_reader(text.as_bytes());
+        let table = Table::read_csv_from(&mut input).unwrap();
+        assert_eq!(table.rows.len(), lines, "one row each, the blank lines skipped");
+        // 8 KiB of read-ahead holds at most 8192 line ends, and a record's own lines.
+        let held = input.get_ref().ends.capacity();
+        assert!(held <= 2 * 8192, "{held} line ends held for {lines} lines");
     }
 }
