@@ -103,8 +103,8 @@ kinloop::mechanism! {
 /// corner told its sides by the product of two slopes, which underflowed to zero below about
 /// `1e-154` (the slider) or above `1e154` (the lever): every state was taken for the near
 /// side, and the corner listed at the end of the step across it, about 1e-7 of the input past
-/// it (8e-8 for the slider at `2e-300`). (The lever below `1e-154` is not traced: its
-/// acceleration analogs, about `1 / size^2`, leave `f64`, and the state at the corner with them.)
+/// it (8e-8 for the slider at `2e-300`). (The lever below `1e-154`:
+/// `the_tilted_lever_below_the_accelerations_range_is_traced_as_at_size_1`.)
 #[test]
 fn a_kink_is_located_at_its_corner_at_every_size() {
     for k in [2e-300, 2e-160, 2e160, 2e300] {
@@ -236,5 +236,39 @@ fn sweep_at_passes_a_kink_and_lists_it() {
         assert_eq!(run.events.len(), 1, "k = {k}: {:?}", run.events);
         assert_eq!(run.events[0].kind, EventKind::Kink);
         assert!((run.events[0].x[0] - 1.0).abs() < tol::LOCATED, "k = {k}: the kink at {}", run.events[0].x[0]);
+    }
+}
+
+/// The tilted lever below about `1e-154` in size, where its acceleration analogs (about
+/// `1 / r^2`) leave `f64`: traced across its corner as at size 1, though the states that judge
+/// the corner cannot have them. It stopped at the corner with `Branch`, "the curve bifurcates or
+/// ends here" (at `x = 0.99999998 r`). The references are independent of the trace at these
+/// sizes: the corner at `x = r` and `sin(th) = |x - r| / (2 r)` in closed form, and the points
+/// of the trace at size 1 (`r = 1`): the equation is the same in units of `r`, so the same
+/// points, each solved to the rounding of `th` (about 0.3 rad) from inputs scaled by `r`, which
+/// rounds them by an ulp: within a few eps of `th` (seen: 1.3) and of `x / r` (seen: 3).
+#[test]
+fn the_tilted_lever_below_the_accelerations_range_is_traced_as_at_size_1() {
+    let trace = |r: f64| {
+        let m = TiltedByTravel { r };
+        let x0 = 0.2 * r;
+        let g = m.position(x0, &m.guess(x0)).unwrap().0;
+        m.trace_curve(x0, 1.8 * r, &g, &TraceConfig::default()).unwrap_or_else(|e| panic!("r = {r:e}: {e}"))
+    };
+    let one = trace(1.0);
+    const FEW_EPS: f64 = 8.0 * f64::EPSILON;
+    for r in [1e-160, 1e-200, 1e-300] {
+        let t = trace(r);
+        assert_eq!(t.kinks.len(), 1, "r = {r:e}: {:?}", t.kinks);
+        let corner = t.kinks[0].x[0] / r;
+        assert!((corner - 1.0).abs() <= AT_CORNER, "r = {r:e}: the kink at {corner} of r");
+        assert_eq!(t.points.len(), one.points.len(), "r = {r:e}");
+        for (p, p1) in t.points.iter().zip(&one.points) {
+            let x = p.x[0] / r;
+            assert!((x - p1.x[0]).abs() <= FEW_EPS, "r = {r:e}: x = {x} of r, {} at size 1", p1.x[0]);
+            assert!((p.q[0] - p1.q[0]).abs() <= FEW_EPS, "r = {r:e}: th = {} at {x}, {} at size 1", p.q[0], p1.q[0]);
+            let off = p.q[0].sin() - 0.5 * (x - 1.0).abs();
+            assert!(off.abs() <= tol::SOLVE, "r = {r:e}: sin(th) at {x} of r off the law by {off:e}");
+        }
     }
 }
