@@ -480,14 +480,19 @@ fn an_angle_written_as_the_length_of_a_polar_term_gets_the_swap() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("`psi` is an angle (elsewhere it turns a link"), "{e:#?}");
     assert!(e[0].ends_with("write `l @ psi`"), "{e:#?}");
-    // An angle written in degrees, a parameter, and an angle that is a sum.
+    // An angle written in degrees, a parameter, and an angle that is a sum: where the angle of
+    // `@` is an angle too (`phi - psi`), swapping the two cannot help.
     let e = errors(
         "pub struct SliderCrank { params r, l, gamma = deg(10); input phi; unknowns psi = deg(-20), x;
          loop oab: r @ phi == (x, 0) + psi @ l + gamma @ (phi - psi); }",
     );
     assert_eq!(e.len(), 2, "{e:#?}");
     assert!(e[0].starts_with("`psi` is an angle (its value is written in degrees)"), "{e:#?}");
-    assert!(e[1].ends_with("write `(phi - psi) @ gamma`"), "{e:#?}");
+    assert!(e[0].ends_with("write `l @ psi`"), "{e:#?}");
+    assert!(
+        e[1].ends_with("`phi - psi` is an angle too, so swapping the two cannot help; write a length there, such as `r * gamma` for the arc a radius `r` rolls"),
+        "{e:#?}"
+    );
     // An angle that an `eq` sets, and one whose sine is taken.
     let e = errors(
         "pub struct Guide { params r, d; input phi; unknowns th, s, x;
@@ -956,7 +961,7 @@ fn an_angle_beside_a_length_is_a_unit_mix() {
 /// The length of `@` is judged by the kind of its expression, as a coordinate is: twice an
 /// angle, an angle offset by a number, a scalar `let` of one and the magnitude of a vector of
 /// angles compiled into a link so many radians long. Each is told the length to write, and
-/// unless the angle of `@` is a constant, the swap too.
+/// unless the angle of `@` is a constant or an angle itself (`psi`, `phi`), the swap too.
 #[test]
 fn an_angle_computed_as_the_length_of_a_polar_term_is_refused() {
     let head = "params r, l, s, e0 = deg(3); input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
@@ -979,8 +984,10 @@ fn an_angle_computed_as_the_length_of_a_polar_term_is_refused() {
         assert!(e[0].starts_with(&format!("`{shown}` is an angle (made from `{from}`, an angle: ")), "{body}: {e:#?}");
         assert!(e[0].contains("but here it is the length of `@`, which takes `length @ angle`: "), "{body}: {e:#?}");
         assert!(e[0].contains(fix), "{body}: {e:#?}");
-        // A constant direction has no angle to swap with.
-        assert_eq!(e[0].contains("swapped"), !body.contains("@ 0;"), "{body}: {e:#?}");
+        // A constant direction has no angle to swap with, and an angle no length.
+        assert_eq!(e[0].contains("swapped"), body.contains("@ s;"), "{body}: {e:#?}");
+        let angle = body.contains("@ psi;") || body.contains("@ phi;");
+        assert_eq!(e[0].contains("is an angle too, so swapping the two cannot help"), angle, "{body}: {e:#?}");
     }
 }
 
@@ -1056,4 +1063,58 @@ fn a_misspelt_option_gets_the_option() {
     assert!(e[0].starts_with("unknown kinloop option; the supported options are"), "{e:#?}");
     let e = decl("#[inline]");
     assert!(!e[0].contains("did you mean"), "{e:#?}");
+}
+
+/// Where the angle of `@` is an angle by the rest of the mechanism, swapping the two cannot
+/// help: the length is told to be a length, not to trade places with another angle. Where the
+/// angle is one only by terms whose length is an angle (`th @ e`, `deg(30) @ e`), it is a
+/// length written in the wrong place, and the swap stands.
+#[test]
+fn a_polar_term_of_two_angles_is_not_told_to_swap_them() {
+    let head = "params r, l, e, tilt = deg(5); input phi; unknowns psi, x; loop c: r @ phi == (x, e) + l @ psi;";
+    for (body, length, angle) in [
+        ("point p = psi @ phi;", "psi", "phi"),
+        ("point p = (2 * psi) @ phi;", "(2 * psi)", "phi"),
+        ("point p = deg(3) @ phi;", "deg(3)", "phi"),
+        ("point p = tilt @ (phi - psi);", "tilt", "phi - psi"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        let fix = format!(
+            "`{angle}` is an angle too, so swapping the two cannot help; write a length there, such as `r * {length}` \
+             for the arc a radius `r` rolls"
+        );
+        assert!(e[0].ends_with(&fix), "{body}: {e:#?}");
+    }
+    for (body, swap) in [
+        ("point p = tilt @ e; point q = deg(30) @ e;", ["e @ tilt", "e @ deg(30)"]),
+        ("point p = psi @ e; point q = tilt @ e;", ["e @ psi", "e @ tilt"]),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 2, "{body}: {e:#?}");
+        for (m, swap) in e.iter().zip(swap) {
+            assert!(m.ends_with(&format!("the two are swapped; write `{swap}`")), "{body}: {e:#?}");
+        }
+    }
+}
+
+/// The angle of a swapped term (`l` in `psi @ l`) is an angle only by that mistake: a
+/// coordinate, a sum and a `let` that use it as the length it is are not refused as well.
+#[test]
+fn the_angle_of_a_swapped_term_is_a_length_elsewhere() {
+    let head = "params r, l, e; input phi; unknowns psi, x;
+                loop c: r @ phi == (x, e) + psi @ l; point mid = r @ phi + 0.5 * l @ psi;";
+    for body in ["point p = (x, 2 * l);", "point p = (x, l);", "let k = x + l; point p = (k, 0);", "eq q: x == l + e;"]
+    {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        let angles: Vec<&String> = e.iter().filter(|m| m.contains("is an angle")).collect();
+        assert_eq!(angles.len(), 1, "{body}: {e:#?}");
+        assert!(angles[0].ends_with("the two are swapped; write `l @ psi`"), "{body}: {e:#?}");
+    }
+    // A name `l` that is an angle is shown turned by a link of another name.
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns x; loop c: r @ phi + r @ l == (x, 0); point p = (x, l); }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].contains("as in `r @ l`"), "{e:#?}");
 }

@@ -537,6 +537,15 @@ impl Graph {
         out
     }
 
+    /// All nodes reachable from `roots` without passing through a node of `avoided` (which are
+    /// not reached themselves), in increasing (topological) order.
+    pub fn reachable_avoiding(&self, roots: &[NodeId], avoided: &[NodeId]) -> Vec<NodeId> {
+        let roots: Vec<NodeId> = roots.iter().copied().filter(|r| !avoided.contains(r)).collect();
+        let mut out = self.walk(&roots, |op, next| next.extend(op.operands().filter(|o| !avoided.contains(o))));
+        out.sort_unstable();
+        out
+    }
+
     /// Every node reachable from `roots` through the operands `through` pushes for each node's
     /// operation, each once, in the order found.
     fn walk(&self, roots: &[NodeId], through: impl Fn(Op, &mut Vec<NodeId>)) -> Vec<NodeId> {

@@ -31,8 +31,15 @@ use Class::{Fraction, Free, Multiple, Other, Periodic};
 /// The arguments of the sines, cosines and tangents below `roots`, for [`in_whole_angle`]:
 /// found once, and each leaf then classified over them alone, not over the whole graph.
 pub fn trig_arguments(g: &Graph, roots: &[NodeId]) -> Vec<NodeId> {
+    trig_arguments_avoiding(g, roots, &[])
+}
+
+/// The arguments of the sines, cosines and tangents below `roots` that are reached without
+/// passing through a node of `avoided`: what the rest of a mechanism says of a leaf, one term
+/// of it set aside (the two products of a polar term, whose own angle is in question).
+pub fn trig_arguments_avoiding(g: &Graph, roots: &[NodeId], avoided: &[NodeId]) -> Vec<NodeId> {
     let mut out: Vec<NodeId> = g
-        .reachable(roots)
+        .reachable_avoiding(roots, avoided)
         .into_iter()
         .filter_map(|n| match g.op(n) {
             Op::Func(Func::Sin | Func::Cos | Func::Tan, a) => Some(a),

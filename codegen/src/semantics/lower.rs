@@ -66,16 +66,22 @@ pub struct Lowerer {
     pub(super) later_uses: std::collections::HashMap<String, std::collections::HashSet<String>>,
 }
 
-/// A polar term whose length varies (a name, `2 * phi`, a scalar `let`, `norm(v)`), noted while
-/// it is lowered for the check that the length is not an angle ([`super::polar`]).
+/// A polar term whose length varies (a name, `2 * phi`, a scalar `let`, `norm(v)`) or is written
+/// in degrees (`deg(3) @ psi`), noted while it is lowered for the check that the length is not
+/// an angle ([`super::polar`]).
 pub(super) struct NamedLength {
     /// The length's leaf where it is a bare name of a parameter, input or unknown; `None` for
     /// an expression, judged by its kind.
     pub(super) leaf: Option<Leaf>,
+    /// Whether the length is written in degrees there (`deg(3)`, `2 * deg(15)`).
+    pub(super) degrees: bool,
     /// The length lowered.
     pub(super) node: NodeId,
     /// The angle lowered.
     pub(super) angle_node: NodeId,
+    /// The term's two coordinates lowered (`len cos(angle)`, `len sin(angle)`): set aside when
+    /// what the rest of the mechanism says of its angle is asked.
+    pub(super) products: [NodeId; 2],
     /// The whole term `length @ angle`.
     pub(super) term: SpanRange,
     /// The length as written.
@@ -90,18 +96,19 @@ pub(super) struct NamedLength {
 }
 
 impl NamedLength {
-    /// The term `lhs @ rhs` (lowered to `len @ angle`), unless its length is a constant or
-    /// written in degrees (refused as it is lowered). `declared` tells a name of a parameter,
+    /// The term `lhs @ rhs` (lowered to `len @ angle`, its coordinates `products`), unless its
+    /// length is a constant not written in `degrees`. `declared` tells a name of a parameter,
     /// input or unknown from a `let` that stands for one.
     pub(super) fn of(
         declared: &dyn Fn(&syn::Ident) -> bool,
         g: &Graph,
         (lhs, rhs): (&Expr, &Expr),
-        len: NodeId,
-        angle: NodeId,
+        [len, angle]: [NodeId; 2],
+        products: [NodeId; 2],
+        degrees: bool,
     ) -> Option<Self> {
         let leaf = match (bare(lhs), g.op(len)) {
-            (e, _) if e.written_in_degrees() => return None,
+            _ if degrees => None,
             (Expr::Var(name), Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_)))) if declared(name) => {
                 Some(l)
             }
@@ -112,8 +119,10 @@ impl NamedLength {
         let term = lhs.range().to(rhs.range());
         Some(NamedLength {
             leaf,
+            degrees,
             node: len,
             angle_node: angle,
+            products,
             term,
             length: bare(lhs).show(),
             factor: operand(lhs),
@@ -259,26 +268,6 @@ fn operand(e: &Expr) -> String {
         e @ (Expr::Binary { .. } | Expr::Neg { .. }) => format!("({})", e.show()),
         e => e.show(),
     }
-}
-
-/// The error for a polar term whose length is written in degrees (`deg(3) @ psi`,
-/// `2 * deg(15) @ s`): an angle where the length belongs, which would compile into a link a
-/// fraction of a unit long. `constant_angle`: the angle is a constant, so there is no length
-/// to swap with. `None` for any other length.
-fn degrees_as_length((lhs, rhs): (&Expr, &Expr), constant_angle: bool) -> Option<syn::Error> {
-    if !bare(lhs).written_in_degrees() {
-        return None;
-    }
-    let length = bare(lhs).show();
-    let fix = if constant_angle {
-        format!("write a length there, such as `r * {}` for the arc a radius `r` rolls", operand(lhs))
-    } else {
-        format!("the two are swapped; write `{} @ {}`", operand(rhs), operand(lhs))
-    };
-    Some(lhs.range().to(rhs.range()).error(format!(
-        "`{length}` is an angle (its value is written in degrees), but here it is the length of `@`, \
-         which takes `length @ angle`: {fix}"
-    )))
 }
 
 /// Largest integer exponent turned into `powi`; larger ones stay `powf`. The bound keeps the
@@ -592,15 +581,14 @@ impl Lowerer {
                 None => Val::S(g.powf(a, b)),
             },
             (BinOp::Polar, Val::S(len), Val::S(angle)) => {
-                let noted = NamedLength::of(&|id| self.declares_leaf(id), &self.graph, sides, len, angle);
-                self.named_lengths.extend(noted);
-                let g = &mut self.graph;
-                if let Some(e) = degrees_as_length(sides, g.as_const(angle).is_some()) {
-                    self.errors.push(e);
-                }
                 let c = g.func(Func::Cos, angle);
                 let s = g.func(Func::Sin, angle);
-                Val::V(g.mul(len, c), g.mul(len, s))
+                let products = [g.mul(len, c), g.mul(len, s)];
+                let degrees = bare(sides.0).written_in_degrees();
+                let declared = |id: &syn::Ident| self.declares_leaf(id);
+                let noted = NamedLength::of(&declared, &self.graph, sides, [len, angle], products, degrees);
+                self.named_lengths.extend(noted);
+                Val::V(products[0], products[1])
             }
             _ => {
                 let e = binary_type_error(op, op_span, sides, l, r);

@@ -228,12 +228,14 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let columns: Vec<NodeId> =
         out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
     let mut angles = super::polar::Angles::new(&residuals, &columns, in_degrees(&globals));
-    // The coordinates first, so that the dynamics does not report one refused there again; their
-    // errors after the dynamics' and the polar terms', in the order of the checks.
+    // The polar terms first, so that the angle of one found swapped is taken for the length it
+    // is everywhere else; then the coordinates, so that the dynamics does not report one refused
+    // there again. Their errors after the dynamics', in the order of the checks.
+    super::polar::note_places(&lw, &mut angles);
+    let terms = super::polar::terms(&lw, &mut angles);
     let refused = super::polar::coordinates(&mut lw, &mut angles);
     let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals);
-    super::polar::check(&mut lw, &mut angles);
-    refused.into_iter().for_each(|e| lw.errors.push(e));
+    terms.into_iter().chain(refused).for_each(|e| lw.errors.push(e));
     super::polar::sums(&mut lw, &mut angles);
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.
     let drawing = if lw.errors.is_empty() { super::drawing::model(&mut lw, &items) } else { DrawingModel::default() };

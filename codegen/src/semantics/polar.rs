@@ -1,9 +1,14 @@
 //! The check that `@` has its length first: `length @ angle`. A polar term whose length is a
 //! bare name of an angle (`th @ s` for `s @ th`) compiles as a link of `th` radians turned by
 //! `s`, a mechanism that solves to wrong angles, or not at all, and whose results change with
-//! the unit of length; it is refused at the term, with the swap to write. A length that is an
-//! expression is judged by its kind, as a coordinate is (below): `(2 * phi) @ th` and
-//! `norm((phi, psi)) @ th` are refused, with a length to write and the swap.
+//! the unit of length; it is refused at the term, with the swap to write, unless the angle of
+//! `@` is an angle too by the rest of the mechanism (`psi @ phi`, `phi` the crank's angle):
+//! swapping cannot help there, and a length is to be written. A length that is an expression
+//! is judged by its kind, as a coordinate is (below): `(2 * phi) @ th` and
+//! `norm((phi, psi)) @ th` are refused, with a length to write and, unless `th` is an angle
+//! too, the swap. The angle of a term found swapped (`l` in `psi @ l`) is an angle only by
+//! that mistake: it is the length it is everywhere else, so one mistake is told once. A term
+//! whose length is written in degrees says nothing of its angle either.
 //!
 //! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
 //! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
@@ -37,14 +42,22 @@ pub(super) struct Angles {
     /// The mechanism's equations and outputs, where an angle is seen to be one.
     roots: Vec<NodeId>,
     residuals: Vec<NodeId>,
-    /// The arguments of the sines and cosines below `roots`, found at the first verdict.
+    /// The arguments of the sines and cosines below `roots`, found at the first verdict, but
+    /// those of the terms `set_aside`.
     arguments: Option<Vec<NodeId>>,
+    /// The coordinates of the polar terms whose length is written in degrees (`deg(3) @ e`,
+    /// `th @ s` with `th = deg(20)`): such a term is a mistake whichever way it is mended, and
+    /// makes its angle no angle (in `th @ s`, `s` is as likely the length).
+    set_aside: Vec<NodeId>,
     /// The parameters and unknowns whose values are written in degrees.
     degrees: Vec<Leaf>,
     known: HashMap<Leaf, bool>,
     /// The names written bare as a coordinate of a position or as the length of `@` that are
     /// not angles: lengths, beside which an angle is a unit mix.
     lengths: HashSet<Leaf>,
+    /// The angles of polar terms found swapped (`l` in `psi @ l`): lengths written in the
+    /// wrong place, angles only by that mistake, so no angle anywhere else.
+    swapped: HashSet<Leaf>,
 }
 
 impl Angles {
@@ -56,54 +69,139 @@ impl Angles {
             roots,
             residuals: residuals.to_vec(),
             arguments: None,
+            set_aside: Vec::new(),
             degrees,
             known: HashMap::new(),
             lengths: HashSet::new(),
+            swapped: HashSet::new(),
         }
     }
 
     /// Why `leaf` (written `name`) is an angle: its value is in degrees, or the mechanism
-    /// makes it one; `None` when it is neither.
-    fn why(&mut self, g: &Graph, leaf: Leaf, name: &str) -> Option<String> {
+    /// makes it one; `None` when it is neither, or is the angle of a term found swapped.
+    pub(super) fn why(&mut self, g: &Graph, leaf: Leaf, name: &str) -> Option<String> {
+        if self.swapped.contains(&leaf) {
+            return None;
+        }
         let degrees = self.degrees.contains(&leaf);
         let (roots, residuals) = (&self.roots, &self.residuals);
-        let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments(g, roots));
+        let set_aside = &self.set_aside;
+        let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, roots, set_aside));
         let known = *self.known.entry(leaf).or_insert_with(|| is_angle(g, leaf, arguments, residuals));
         why_an_angle(degrees, known, name)
     }
+
+    /// Whether `leaf` is an angle by what the mechanism says of it with the term `t` set
+    /// aside: written in degrees, an angle of another term or of a sine or cosine, or set to
+    /// one by an `eq`. `arguments` are the trigonometric arguments found without `t`.
+    fn apart(&self, g: &Graph, leaf: Leaf, arguments: &[NodeId]) -> bool {
+        !self.swapped.contains(&leaf) && (self.degrees.contains(&leaf) || is_angle(g, leaf, arguments, &self.residuals))
+    }
 }
 
-/// Reports every polar term noted in `lw` whose length is an angle: a name that is one, or an
-/// expression of one (`(2 * phi) @ th`, `(phi + 0.0) @ th`, `norm((phi, psi)) @ th`) judged by
-/// its kind, as a coordinate is (`(r * phi) @ th` is a length). The names first: the angle of a
-/// term they find swapped (`l` in `psi @ l`) is an angle only by that mistake, and makes no
-/// expression of it one (`0.5 * l @ psi` is told nothing more).
-pub(super) fn check(lw: &mut Lowerer, angles: &mut Angles) {
-    let (names, expressions): (Vec<_>, Vec<_>) =
-        std::mem::take(&mut lw.named_lengths).into_iter().partition(|t| t.leaf.is_some());
-    let mut swapped = HashSet::new();
-    for t in names {
-        let Some(leaf) = t.leaf else { continue };
-        let Some(why) = angles.why(&lw.graph, leaf, &t.length) else {
-            angles.lengths.insert(leaf);
+/// Notes the polar terms whose length is written in degrees, which make their angle no angle,
+/// before any name is judged.
+pub(super) fn note_places(lw: &Lowerer, angles: &mut Angles) {
+    let degrees = |t: &&NamedLength| t.degrees || t.leaf.is_some_and(|l| angles.degrees.contains(&l));
+    let set_aside: Vec<NodeId> = lw.named_lengths.iter().filter(degrees).flat_map(|t| t.products).collect();
+    angles.set_aside = set_aside;
+}
+
+/// The errors for every polar term noted in `lw` whose length is an angle, in the order they are
+/// written: a name that is one, a value in degrees, or an expression of one (`(2 * phi) @ th`,
+/// `(phi + 0.0) @ th`, `norm((phi, psi)) @ th`) judged by its kind, as a coordinate is
+/// (`(r * phi) @ th` is a length). Each says to swap the two only where the angle of `@` is no
+/// angle by the rest of the mechanism (in `psi @ phi`, with `phi` an angle elsewhere, swapping
+/// cannot help). Names and degrees first: the angle of a term they find swapped (`l` in
+/// `psi @ l`) is an angle only by that mistake, and makes nothing else one (`0.5 * l @ psi`,
+/// `(x, 2 * l)` and `x + l` are told nothing more). Run before the checks of coordinates and
+/// sums, which take those angles for lengths.
+pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
+    let mut found: Vec<(usize, syn::Error)> = Vec::new();
+    let direct = |t: &&NamedLength| t.leaf.is_some() || t.degrees;
+    // The terms of names and degrees whose length is an angle say nothing of their angle: each
+    // is judged by the rest of the mechanism (in `th @ l` and `psi @ l`, `l` is a length).
+    let mut suspects = angles.set_aside.clone();
+    for t in lw.named_lengths.iter().filter(direct) {
+        if t.leaf.is_some_and(|leaf| angles.why(&lw.graph, leaf, &t.length).is_some()) {
+            suspects.extend(t.products);
+        }
+    }
+    let g = &lw.graph;
+    let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &suspects);
+    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| direct(t)) {
+        let why = match t.leaf {
+            Some(leaf) if !t.degrees => angles.why(&lw.graph, leaf, &t.length),
+            _ => why_an_angle(true, false, &t.length),
+        };
+        let Some(why) = why else {
+            angles.lengths.extend(t.leaf);
             continue;
         };
-        if !t.constant_angle {
-            swapped.extend(lw.graph.leaves_of(&[t.angle_node]));
-        }
-        let fix = if t.constant_angle { arc(&t) } else { swap(&t) };
-        lw.errors.push(length_error(&t, &why, &fix));
-    }
-    for t in expressions {
-        let Some(why) = why_expression(lw, angles, t.node, &swapped) else { continue };
-        // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
-        // angle of `@` is an angle by that term alone): both ways are told.
-        let fix = match t.constant_angle {
-            true => arc(&t),
-            false => format!("{}, or if the two are swapped, write `{} @ {}`", arc(&t), t.angle, t.factor),
+        let fix = match angle_of(lw, angles, t, &arguments) {
+            AngleOf::Constant => arc(t),
+            AngleOf::Angle => both_angles(t),
+            AngleOf::Length(leaves) => {
+                angles.swapped.extend(leaves);
+                swap(t)
+            }
         };
-        lw.errors.push(length_error(&t, &why, &fix));
+        found.push((i, length_error(t, &why, &fix)));
     }
+    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| !direct(t)) {
+        let Some(why) = why_expression(lw, angles, t.node) else { continue };
+        // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
+        // angle of `@` is an angle by that term alone): both ways are told, where both could be.
+        let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).copied().collect();
+        let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &avoided);
+        let fix = match angle_of(lw, angles, t, &arguments) {
+            AngleOf::Constant => arc(t),
+            AngleOf::Angle => both_angles(t),
+            AngleOf::Length(_) => format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor),
+        };
+        found.push((i, length_error(t, &why, &fix)));
+    }
+    found.sort_by_key(|(i, _)| *i);
+    found.into_iter().map(|(_, e)| e).collect()
+}
+
+/// What the angle of a polar term whose length is an angle is, by the rest of the mechanism.
+enum AngleOf {
+    /// A constant: no length to swap with.
+    Constant,
+    /// An angle by the rest of the mechanism: swapping cannot help.
+    Angle,
+    /// No angle but by this term: the two are swapped, and these leaves of it are lengths.
+    Length(Vec<Leaf>),
+}
+
+/// What the angle of the term `t` is by the rest of the mechanism (`arguments`: the
+/// trigonometric arguments found without `t` and the other terms whose length is an angle): a
+/// name that only such terms make an angle (`l` in `psi @ l`) is a length written in the wrong
+/// place.
+fn angle_of(lw: &Lowerer, angles: &Angles, t: &NamedLength, arguments: &[NodeId]) -> AngleOf {
+    if t.constant_angle {
+        return AngleOf::Constant;
+    }
+    let g = &lw.graph;
+    let leaves = g.leaves_of(&[t.angle_node]);
+    let apart: HashSet<Leaf> = leaves.iter().copied().filter(|&l| angles.apart(g, l, arguments)).collect();
+    let of = |l: Leaf| if apart.contains(&l) { Dim::Angle } else { Dim::Other };
+    if dims::is_angle(g, t.angle_node, &of) {
+        return AngleOf::Angle;
+    }
+    AngleOf::Length(leaves.into_iter().filter(|l| !apart.contains(l)).collect())
+}
+
+/// The fix for the term `t` whose angle is an angle too: a length where the length belongs.
+fn both_angles(t: &NamedLength) -> String {
+    format!("`{}` is an angle too, so swapping the two cannot help; {}", bare_angle(t), arc(t))
+}
+
+/// The angle of `t` as written, without the parentheses that make it one operand.
+fn bare_angle(t: &NamedLength) -> &str {
+    let a = t.angle.as_str();
+    a.strip_prefix('(').and_then(|a| a.strip_suffix(')')).unwrap_or(a)
 }
 
 /// A length to write for the length `t` has: an arc rolled by it.
@@ -168,18 +266,17 @@ fn why_coordinate(lw: &Lowerer, angles: &mut Angles, c: &NamedCoordinate) -> Opt
         Coordinate::Name(leaf) => Some((angles.why(g, leaf, &c.name)?, Some(c.node))),
         // Written in degrees there: `(x, deg(5))`.
         Coordinate::Degrees => Some((why_an_angle(true, false, &c.name)?, None)),
-        Coordinate::Expr(n) => Some((why_expression(lw, angles, n, &HashSet::new())?, Some(n))),
+        Coordinate::Expr(n) => Some((why_expression(lw, angles, n)?, Some(n))),
     }
 }
 
 /// Why the expression `n` is an angle, named by the first leaf that is one; `None` when the
 /// kinds of its operations do not make it one (`2 * phi` is, `r * phi` and `sin(phi)` are not).
-/// The leaves `ignored` are taken for no angle.
-fn why_expression(lw: &Lowerer, angles: &mut Angles, n: NodeId, ignored: &HashSet<Leaf>) -> Option<String> {
+fn why_expression(lw: &Lowerer, angles: &mut Angles, n: NodeId) -> Option<String> {
     let g = &lw.graph;
     let mut why = None;
     let mut found = HashSet::new();
-    for leaf in g.leaves_of(&[n]).into_iter().filter(|l| !ignored.contains(l)) {
+    for leaf in g.leaves_of(&[n]) {
         let name = leaf_name(lw, leaf).unwrap_or_default();
         if let Some(w) = angles.why(g, leaf, &name) {
             why.get_or_insert_with(|| format!("made from `{name}`, an angle: {w}"));
@@ -195,7 +292,7 @@ fn why_expression(lw: &Lowerer, angles: &mut Angles, n: NodeId, ignored: &HashSe
 
 /// Reports every scalar sum, difference and `eq` noted in `lw` that puts an angle beside a
 /// length (`eq e: s == phi;` with `s` a slider's travel): its value changes with the unit of
-/// length. Run after [`coordinates`] and [`check`], which find the lengths.
+/// length. Run after [`coordinates`] and [`terms`], which find the lengths.
 pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
     let pairs = std::mem::take(&mut lw.scalar_pairs);
     if angles.lengths.is_empty() {
@@ -310,8 +407,10 @@ fn why_an_angle(degrees: bool, known: bool, name: &str) -> Option<String> {
     if degrees {
         Some("its value is written in degrees".to_string())
     } else if known {
+        // The example's link is named apart from the angle: `l @ l` would read as a length.
+        let link = if name == "l" { "r" } else { "l" };
         Some(format!(
-            "elsewhere it turns a link, as in `l @ {name}`, or is the argument of a sine or cosine, \
+            "elsewhere it turns a link, as in `{link} @ {name}`, or is the argument of a sine or cosine, \
              or an `eq` sets it to an angle"
         ))
     } else {
