@@ -1118,3 +1118,41 @@ fn the_angle_of_a_swapped_term_is_a_length_elsewhere() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].contains("as in `r @ l`"), "{e:#?}");
 }
+
+/// An angle unknown known as one only from its guess in degrees (a pinion rolled into a
+/// length, `x == r * w`) is refused bare in a centre of mass or a force's point, as an angle
+/// of the kinematics is.
+#[test]
+fn an_unknown_guessed_in_degrees_is_no_coordinate_of_a_body_or_a_force() {
+    let head = "params r, l, e, m; input phi; unknowns psi, x, w = deg(30);
+                loop c: r @ phi == (x, e) + l @ psi; eq roll: x == r * w;";
+    for (body, what) in [
+        ("body b: mass m, com (w, e);", "a centre of mass"),
+        ("force f at (x, w) = (1, 0);", "the point a force acts at"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        let told = format!("{what} is a point of lengths, but `w` is an angle (its value is written in degrees): ");
+        assert!(e[0].starts_with(&told), "{body}: {e:#?}");
+    }
+}
+
+/// A centre of mass or a force's point with an angle among its coordinates gets the angle's
+/// error alone: declaring the point, which its other coordinate would need, cannot mend it.
+#[test]
+fn an_angle_beside_an_undeclared_coordinate_is_the_one_error() {
+    let head = "params r, l, m; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for (body, angle) in [
+        ("body b: mass m, com (psi, x * l);", "psi"),
+        ("body b: mass m, com (2 * psi, x * l);", "2 * psi"),
+        ("force f at (phi, x / 2) = (1, 0);", "phi"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        assert!(e[0].contains(&format!("`{angle}` is an angle")), "{body}: {e:#?}");
+    }
+    // Without the angle, the point is still to be declared.
+    let e = errors(&format!("pub struct S {{ {head} body b: mass m, com (x, x * l); }}"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("a centre of mass must be a declared point"), "{e:#?}");
+}

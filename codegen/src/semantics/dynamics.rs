@@ -244,17 +244,21 @@ impl Pending {
     }
 
     /// Resolves the points against the output columns and checks the angles against the
-    /// equations' residuals and the output columns.
-    pub(super) fn resolve(self, lw: &mut Lowerer, outputs: &[NodeId], residuals: &[NodeId]) -> DynamicsModel {
+    /// equations' residuals and the output columns. A coordinate of a point is an angle where
+    /// `angle_of` says so (as the check of positions' coordinates judges one: in degrees too,
+    /// and not the angle of a term found swapped), `Some(true)` if its value is in degrees.
+    pub(super) fn resolve(
+        self,
+        lw: &mut Lowerer,
+        outputs: &[NodeId],
+        residuals: &[NodeId],
+        angle_of: &mut dyn FnMut(&Lowerer, Leaf) -> Option<bool>,
+    ) -> DynamicsModel {
         let columns: HashMap<NodeId, usize> = outputs.iter().enumerate().rev().map(|(c, &n)| (n, c)).collect();
-        // The kinematics' trigonometric arguments, found once (a walk of the whole graph, not
-        // taken for a mechanism that names no angle), and one verdict per angle however many
-        // bodies and torques name it.
-        let points = self.bodies.iter().map(|b| &b.com).chain(self.forces.iter().map(|f| &f.1));
-        let unknown_coords = points
-            .flat_map(|p| [p.x, p.y])
-            .any(|n| matches!(lw.graph.op(n), Op::Leaf(Leaf::Unknown(_) | Leaf::Input(_))));
-        let arguments = if self.angles.is_empty() && !unknown_coords {
+        // The kinematics' trigonometric arguments, for the angles `turns` and `on` name: found
+        // once (a walk of the whole graph, not taken for a mechanism that names none), and one
+        // verdict per angle however many bodies and torques name it.
+        let arguments = if self.angles.is_empty() {
             Vec::new()
         } else {
             let kinematics: Vec<NodeId> = residuals.iter().chain(outputs).copied().collect();
@@ -292,35 +296,35 @@ impl Pending {
             // A coordinate that is an angle unknown puts the point at so many radians: a body's
             // mass there counted in mass rad^2 beside the others' mass length^2, and results
             // that changed with the unit of length, without a word. Each such coordinate is
-            // told, once per name.
-            let mut angles: Vec<Leaf> = Vec::new();
+            // told, once per name: an angle of the mechanism, or one whose guess is in degrees.
+            let mut found: Vec<(Leaf, bool)> = Vec::new();
             for n in nodes {
                 let Op::Leaf(leaf @ Leaf::Unknown(_)) = lw.graph.op(n) else { continue };
-                if refused(lw, n) || angles.contains(&leaf) {
+                if refused(lw, n) || found.iter().any(|f| f.0 == leaf) {
                     continue;
                 }
-                let verdict = *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
-                if verdict {
-                    angles.push(leaf);
-                }
+                found.extend(angle_of(lw, leaf).map(|degrees| (leaf, degrees)));
             }
-            for &leaf in &angles {
+            for &(leaf, degrees) in &found {
                 let name = leaf_name(lw, leaf).unwrap_or_default();
+                let why = if degrees { " (its value is written in degrees)" } else { "" };
                 lw.errors.push(p.range.error(format!(
-                    "{what} is a point of lengths, but `{name}` is an angle: write a length for that coordinate \
-                     (a slider's unknown, a constant, or a declared point)"
+                    "{what} is a point of lengths, but `{name}` is an angle{why}: write a length for that \
+                     coordinate (a slider's unknown, a constant, or a declared point)"
                 )));
             }
-            // The other coordinates are read from the state, or refused where they are written
-            // (an angle input, `2 * psi`: declaring the point would not mend them), or not read.
+            // A coordinate told (here, or refused where it is written: an angle input, `2 * psi`)
+            // is the one mistake of this point: declaring the point would not mend it.
             let told =
-                |lw: &Lowerer, n: NodeId| refused(lw, n) || angles.iter().any(|&l| lw.graph.op(n) == Op::Leaf(l));
-            let unread: Vec<NodeId> =
-                nodes.into_iter().filter(|&n| !told(lw, n) && coord(&lw.graph, &columns, n).is_none()).collect();
+                |lw: &Lowerer, n: NodeId| refused(lw, n) || found.iter().any(|&(l, _)| lw.graph.op(n) == Op::Leaf(l));
+            if nodes.iter().any(|&n| told(lw, n)) {
+                return None;
+            }
+            // The other coordinates are read from the state, or not read.
+            let unread: Vec<NodeId> = nodes.into_iter().filter(|&n| coord(&lw.graph, &columns, n).is_none()).collect();
             if unread.is_empty() {
-                let read = [coord(&lw.graph, &columns, p.x), coord(&lw.graph, &columns, p.y)];
-                return match (nodes.iter().any(|&n| told(lw, n)), read) {
-                    (false, [Some(x), Some(y)]) => Some([x, y]),
+                return match [coord(&lw.graph, &columns, p.x), coord(&lw.graph, &columns, p.y)] {
+                    [Some(x), Some(y)] => Some([x, y]),
                     _ => None,
                 };
             }

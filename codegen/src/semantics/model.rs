@@ -234,7 +234,11 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     super::polar::note_places(&lw, &mut angles);
     let terms = super::polar::terms(&lw, &mut angles);
     let refused = super::polar::coordinates(&mut lw, &mut angles);
-    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals);
+    let mut angle_of = |lw: &Lowerer, leaf: Leaf| {
+        let name = super::dynamics::leaf_name(lw, leaf).unwrap_or_default();
+        angles.why(&lw.graph, leaf, &name).map(|_| angles.in_degrees(leaf))
+    };
+    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals, &mut angle_of);
     terms.into_iter().chain(refused).for_each(|e| lw.errors.push(e));
     super::polar::sums(&mut lw, &mut angles);
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.

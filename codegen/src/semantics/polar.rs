@@ -91,6 +91,11 @@ impl Angles {
         why_an_angle(degrees, known, name)
     }
 
+    /// Whether `leaf` is an angle because its value is written in degrees.
+    pub(super) fn in_degrees(&self, leaf: Leaf) -> bool {
+        self.degrees.contains(&leaf) && !self.swapped.contains(&leaf)
+    }
+
     /// Whether `leaf` is an angle by what the mechanism says of it with the term `t` set
     /// aside: written in degrees, an angle of another term or of a sine or cosine, or set to
     /// one by an `eq`. `arguments` are the trigonometric arguments found without `t`.
