@@ -1156,3 +1156,25 @@ fn an_angle_beside_an_undeclared_coordinate_is_the_one_error() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("a centre of mass must be a declared point"), "{e:#?}");
 }
+
+/// A name written as a length (a coordinate of the loop, the length of `@`) that enters a sine
+/// only as a fraction of itself (`sin(x / 2)`: the 2 may be a radius written as a number) is
+/// of no certain kind, so a length: neither it nor its term is refused. A whole multiple
+/// (`sin(2 * x)`) still makes it an angle, and so does a half angle of a name not written as a
+/// length.
+#[test]
+fn a_length_scaled_into_a_sine_by_a_number_stays_a_length() {
+    let head = "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for body in ["point p = x @ psi; output s = sin(x / 2);", "point p = (x / 2) @ psi; output s = cos(1.5 * x);"] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert!(e.iter().all(|m| !m.contains("is an angle")), "{body}: {e:#?}");
+    }
+    let e = errors(&format!("pub struct S {{ {head} point p = x @ psi; output s = sin(2 * x); }}"));
+    assert!(e.iter().any(|m| m.starts_with("`x` is an angle")), "{e:#?}");
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi, x, h; loop c: r @ phi == (x, 0) + l @ psi;
+                    eq half: h == x / l; output s = sin(h / 2); let k = x + h; output o = k; }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`x + h` adds an angle and a length"), "{e:#?}");
+}

@@ -61,6 +61,15 @@ pub fn in_whole_angle(g: &Graph, q: Leaf, arguments: &[NodeId]) -> bool {
     arguments.iter().any(|a| matches!(class.get(a), Some(Multiple(k)) if *k != 0) || class.get(a) == Some(&Fraction))
 }
 
+/// Whether `q` enters one of `arguments` as a whole multiple of itself (`q`, `q + gamma`, `-q`,
+/// `2 q`), not only as a fraction (`q / 2`, `1.5 q`): a fraction's divisor may be a length
+/// written as a number (`sin(x / 2)` for a rack of radius 2), so only a whole multiple makes
+/// `q` an angle against a place that writes it as a length.
+pub fn in_whole_multiple(g: &Graph, q: Leaf, arguments: &[NodeId]) -> bool {
+    let class = classify(g, q, arguments);
+    arguments.iter().any(|a| matches!(class.get(a), Some(Multiple(k)) if *k != 0))
+}
+
 /// The class of every node below `roots` with respect to leaf `q`.
 pub fn classify(g: &Graph, q: Leaf, roots: &[NodeId]) -> HashMap<NodeId, Class> {
     let mut seen: HashSet<NodeId> = HashSet::new();

@@ -467,7 +467,7 @@ pub(super) fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &
 /// with `f` one or more inverse trigonometric functions (`atan2`, `asin`, `acos`, `atan`,
 /// `angle(v)`, which is an `atan2`) and `c` terms free of the state (an offset such as `pi / 2`).
 /// The leaf must be a whole side: `x == l * atan(s)` makes `x` a length.
-fn sets_to_angle(g: &Graph, leaf: Leaf, r: NodeId) -> bool {
+pub(super) fn sets_to_angle(g: &Graph, leaf: Leaf, r: NodeId) -> bool {
     let Some(terms) = terms(g, r) else { return false };
     let (mut own, mut angles) = (0, 0);
     for t in terms {

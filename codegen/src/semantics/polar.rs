@@ -26,10 +26,13 @@
 //!
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
-//! sets it to an angle), or one whose value is written in degrees. A length times an angle
-//! (`(r * phi) @ 0`), a constant, or a name of no known kind stays the length it is written as.
+//! sets it to an angle), or one whose value is written in degrees. A name written as a length
+//! elsewhere (a coordinate of a position, the length of `@`) that a sine takes only as a
+//! fraction of itself (`sin(x / 2)`, the 2 perhaps a radius written as a number) is of no
+//! certain kind. A length times an angle (`(r * phi) @ 0`), a constant, or a name of no known
+//! kind stays the length it is written as.
 
-use super::dynamics::{is_angle, leaf_name};
+use super::dynamics::{leaf_name, sets_to_angle};
 use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair};
 use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::graph::dims::{self, Dim};
@@ -55,6 +58,11 @@ pub(super) struct Angles {
     /// The names written bare as a coordinate of a position or as the length of `@` that are
     /// not angles: lengths, beside which an angle is a unit mix.
     lengths: HashSet<Leaf>,
+    /// The names written bare as a coordinate of a position or as the length of `@`: lengths
+    /// by their place, against which a name is an angle only if it enters a sine or cosine
+    /// whole (`l @ q`, `sin(2 * q)`), not only as a fraction (`sin(x / 2)`, where the divisor
+    /// may be a length written as a number), or an `eq` sets it to one.
+    placed_as_lengths: HashSet<Leaf>,
     /// The angles of polar terms found swapped (`l` in `psi @ l`): lengths written in the
     /// wrong place, angles only by that mistake, so no angle anywhere else.
     swapped: HashSet<Leaf>,
@@ -73,6 +81,7 @@ impl Angles {
             degrees,
             known: HashMap::new(),
             lengths: HashSet::new(),
+            placed_as_lengths: HashSet::new(),
             swapped: HashSet::new(),
         }
     }
@@ -84,10 +93,11 @@ impl Angles {
             return None;
         }
         let degrees = self.degrees.contains(&leaf);
-        let (roots, residuals) = (&self.roots, &self.residuals);
+        let (roots, residuals, placed) = (&self.roots, &self.residuals, &self.placed_as_lengths);
         let set_aside = &self.set_aside;
         let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, roots, set_aside));
-        let known = *self.known.entry(leaf).or_insert_with(|| is_angle(g, leaf, arguments, residuals));
+        let known =
+            *self.known.entry(leaf).or_insert_with(|| is_angle(g, leaf, arguments, residuals, placed.contains(&leaf)));
         why_an_angle(degrees, known, name)
     }
 
@@ -100,16 +110,38 @@ impl Angles {
     /// aside: written in degrees, an angle of another term or of a sine or cosine, or set to
     /// one by an `eq`. `arguments` are the trigonometric arguments found without `t`.
     fn apart(&self, g: &Graph, leaf: Leaf, arguments: &[NodeId]) -> bool {
-        !self.swapped.contains(&leaf) && (self.degrees.contains(&leaf) || is_angle(g, leaf, arguments, &self.residuals))
+        let placed = self.placed_as_lengths.contains(&leaf);
+        !self.swapped.contains(&leaf)
+            && (self.degrees.contains(&leaf) || is_angle(g, leaf, arguments, &self.residuals, placed))
     }
 }
 
-/// Notes the polar terms whose length is written in degrees, which make their angle no angle,
-/// before any name is judged.
+/// Whether `leaf` is an angle of the kinematics: it enters a sine, cosine or tangent (among
+/// `arguments`) as a multiple of itself (`l @ q`, `sin(2 * q)`), or an equation sets it to an
+/// angle. A name `placed` as a length (a coordinate of a position, the length of `@`) that
+/// enters an argument only as a fraction (`sin(x / 2)`) is of no certain kind, and no angle.
+fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &[NodeId], placed: bool) -> bool {
+    let set = || residuals.iter().any(|&r| sets_to_angle(g, leaf, r));
+    match placed {
+        true => multiples::in_whole_multiple(g, leaf, arguments) || set(),
+        false => multiples::in_whole_angle(g, leaf, arguments) || set(),
+    }
+}
+
+/// Notes what the places of names say before any is judged: the names that `lw` writes as
+/// lengths (a coordinate of a position, the length of `@`), and the polar terms whose length
+/// is written in degrees, which make their angle no angle.
 pub(super) fn note_places(lw: &Lowerer, angles: &mut Angles) {
     let degrees = |t: &&NamedLength| t.degrees || t.leaf.is_some_and(|l| angles.degrees.contains(&l));
     let set_aside: Vec<NodeId> = lw.named_lengths.iter().filter(degrees).flat_map(|t| t.products).collect();
     angles.set_aside = set_aside;
+    let coordinates = lw.named_coordinates.iter().filter(|c| !matches!(c.place, Place::Let(_)));
+    let names = coordinates.filter_map(|c| match c.what {
+        Coordinate::Name(leaf) => Some(leaf),
+        _ => None,
+    });
+    let lengths = lw.named_lengths.iter().filter_map(|t| t.leaf);
+    angles.placed_as_lengths.extend(names.chain(lengths));
 }
 
 /// The errors for every polar term noted in `lw` whose length is an angle, in the order they are
