@@ -37,11 +37,11 @@
 //!   write (`(r * phi) @ th` compiles) and, unless the angle is a constant or an angle itself
 //!   (`psi @ phi`, where swapping cannot help), the swap; the angle of a swapped term is the
 //!   length it is everywhere else (`(x, l)` beside `psi @ l` is not refused too). A value in
-//!   degrees may be scaled by a number or offset by one (`2 * deg(15)`, `deg(90) - pi / 6`):
-//!   it is an angle all the same. A name of no known kind cannot be told from a length, so a
-//!   swap whose angle is an angle nowhere else compiles as written; nor can a name written as a
-//!   length that a sine takes only as a fraction of itself (`x` in `sin(x / 2)`: the 2 may be a
-//!   radius). For
+//!   degrees may be scaled by a number or offset by one (`2 * deg(15)`, `deg(90) - pi / 6`),
+//!   or named by a `let` (`let tilt = deg(5);`): it is an angle all the same. A name of no
+//!   known kind cannot be told from a length, so a swap whose angle is an angle nowhere else
+//!   compiles as written; nor can a name written as a length that a sine takes only as a
+//!   fraction of itself (`x` in `sin(x / 2)`: the 2 may be a radius). For
 //!   the same reason a loop, which adds lengths, refuses such an angle (or a value written in
 //!   degrees) as a coordinate of one of its vectors, `(x, phi)`: write a length there,
 //!   `(x, r * phi)`. So do the other positions: a `point`, a vector `let` that a loop or point

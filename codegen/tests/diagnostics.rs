@@ -1178,3 +1178,27 @@ fn a_length_scaled_into_a_sine_by_a_number_stays_a_length() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("`x + h` adds an angle and a length"), "{e:#?}");
 }
+
+/// A scalar `let` of a value in degrees is an angle where it is written as a length, as the
+/// value written there is: the length of `@` and a coordinate of a position, directly or
+/// scaled by a number, or through another such `let`.
+#[test]
+fn a_let_in_degrees_is_an_angle_where_a_length_belongs() {
+    let head = "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi;";
+    for (body, shown) in [
+        ("let tilt = deg(15); point p = (x, 0) + tilt @ l;", "tilt"),
+        ("let tilt = 2 * deg(15); point p = (x, tilt);", "tilt"),
+        ("let tilt = deg(15); point p = (x, 0) + (2 * tilt) @ l;", "2 * tilt"),
+        ("let tilt = deg(15); let more = tilt + pi / 2; point p = (x, more);", "more"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        assert_eq!(e.len(), 1, "{body}: {e:#?}");
+        assert!(
+            e[0].starts_with(&format!("`{shown}` is an angle (its value is written in degrees)")),
+            "{body}: {e:#?}"
+        );
+    }
+    // A `let` of a number is a length as written.
+    let e = errors(&format!("pub struct S {{ {head} let k = 2 * pi / 3; point p = (x, k) + k @ psi; }}"));
+    assert!(e.is_empty(), "{e:#?}");
+}

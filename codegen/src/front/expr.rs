@@ -169,19 +169,26 @@ impl Expr {
     /// `deg(10) + deg(5)`): the value is then certainly an angle, whatever number it is. A
     /// product of two of them, or of one with a name, is not: its kind is not certain.
     pub fn written_in_degrees(&self) -> bool {
+        self.written_in_degrees_with(&|_| false)
+    }
+
+    /// As [`Expr::written_in_degrees`], a name that `named` says stands for a value in degrees
+    /// (a `let` of one: `let tilt = deg(5);`) counted as one written there.
+    pub fn written_in_degrees_with(&self, named: &dyn Fn(&Ident) -> bool) -> bool {
+        let degrees = |e: &Expr| e.written_in_degrees_with(named);
         match self {
             Expr::Call { func, .. } => func == "deg",
-            Expr::Neg { expr, .. } => expr.written_in_degrees(),
-            Expr::Paren { inner, .. } => inner.written_in_degrees(),
+            Expr::Var(id) => named(id),
+            Expr::Neg { expr, .. } => degrees(expr),
+            Expr::Paren { inner, .. } => degrees(inner),
             Expr::Binary { op: BinOp::Mul, lhs, rhs, .. } => {
-                (lhs.written_in_degrees() && rhs.is_plain_number())
-                    || (lhs.is_plain_number() && rhs.written_in_degrees())
+                (degrees(lhs) && rhs.is_plain_number()) || (lhs.is_plain_number() && degrees(rhs))
             }
-            Expr::Binary { op: BinOp::Div, lhs, rhs, .. } => lhs.written_in_degrees() && rhs.is_plain_number(),
+            Expr::Binary { op: BinOp::Div, lhs, rhs, .. } => degrees(lhs) && rhs.is_plain_number(),
             Expr::Binary { op: BinOp::Add | BinOp::Sub, lhs, rhs, .. } => {
                 // At least one term in degrees, and the other in degrees or a plain number.
-                let term = |e: &Expr| e.written_in_degrees() || e.is_plain_number();
-                (lhs.written_in_degrees() || rhs.written_in_degrees()) && term(lhs) && term(rhs)
+                let term = |e: &Expr| degrees(e) || e.is_plain_number();
+                (degrees(lhs) || degrees(rhs)) && term(lhs) && term(rhs)
             }
             _ => false,
         }

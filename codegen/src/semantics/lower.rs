@@ -64,6 +64,9 @@ pub struct Lowerer {
     /// The names each `let`, `point` and `output` uses in its value: a use of one further down
     /// whose value uses the name being defined is a circle, which moving it up cannot mend.
     pub(super) later_uses: std::collections::HashMap<String, std::collections::HashSet<String>>,
+    /// The scalar `let`s whose value is written in degrees (`let tilt = 2 * deg(15);`): a
+    /// constant in the graph, an angle where it is written as a length, as `deg(30)` is.
+    pub(super) degree_lets: std::collections::HashSet<String>,
 }
 
 /// A polar term whose length varies (a name, `2 * phi`, a scalar `let`, `norm(v)`) or is written
@@ -230,12 +233,18 @@ pub(super) struct NamedCoordinate {
 }
 
 impl NamedCoordinate {
-    /// The coordinate `e` (lowered to `n`) of a vector in `place`; `None` for a constant, which
-    /// is a length as written. `declared` tells a name of a parameter, input or unknown from a
-    /// `let` that stands for one.
-    fn of(declared: &dyn Fn(&syn::Ident) -> bool, g: &Graph, place: &Place, e: &Expr, n: NodeId) -> Option<Self> {
+    /// The coordinate `e` (lowered to `n`) of a vector in `place`; `None` for a constant not
+    /// written in `degrees`, which is a length as written. `declared` tells a name of a
+    /// parameter, input or unknown from a `let` that stands for one.
+    fn of(
+        declared: &dyn Fn(&syn::Ident) -> bool,
+        g: &Graph,
+        place: &Place,
+        (e, n): (&Expr, NodeId),
+        degrees: bool,
+    ) -> Option<Self> {
         let what = match (bare(e), g.op(n)) {
-            (e, _) if e.written_in_degrees() => Coordinate::Degrees,
+            _ if degrees => Coordinate::Degrees,
             (Expr::Var(name), Op::Leaf(l @ (Leaf::Param(_) | Leaf::Input(_) | Leaf::Unknown(_)))) if declared(name) => {
                 Coordinate::Name(l)
             }
@@ -313,6 +322,7 @@ impl Lowerer {
             in_let: false,
             defining: None,
             later_uses: Default::default(),
+            degree_lets: Default::default(),
         }
     }
 
@@ -477,7 +487,8 @@ impl Lowerer {
         if let (BinOp::Mul, true, false, Some(place), (Val::S(n), e)) =
             (op, constant, scalar_noted, self.lengths.clone(), scalar)
         {
-            let noted = NamedCoordinate::of(&|id| self.declares_leaf(id), &self.graph, &place, e, n);
+            let degrees = self.in_degrees(e);
+            let noted = NamedCoordinate::of(&|id| self.declares_leaf(id), &self.graph, &place, (e, n), degrees);
             self.named_coordinates.extend(noted);
         }
     }
@@ -489,7 +500,8 @@ impl Lowerer {
         let n = self.lower_component(e)?;
         let inner = [self.named_coordinates.len(), self.let_uses.len()] != before;
         if let (Some(place), false) = (&self.lengths, inner) {
-            let noted = NamedCoordinate::of(&|id| self.declares_leaf(id), &self.graph, place, e, n);
+            let degrees = self.in_degrees(e);
+            let noted = NamedCoordinate::of(&|id| self.declares_leaf(id), &self.graph, place, (e, n), degrees);
             self.named_coordinates.extend(noted);
         }
         Some(n)
@@ -584,7 +596,7 @@ impl Lowerer {
                 let c = g.func(Func::Cos, angle);
                 let s = g.func(Func::Sin, angle);
                 let products = [g.mul(len, c), g.mul(len, s)];
-                let degrees = bare(sides.0).written_in_degrees();
+                let degrees = self.in_degrees(sides.0);
                 let declared = |id: &syn::Ident| self.declares_leaf(id);
                 let noted = NamedLength::of(&declared, &self.graph, sides, [len, angle], products, degrees);
                 self.named_lengths.extend(noted);

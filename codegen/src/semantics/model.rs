@@ -365,6 +365,9 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
             lw.in_let = true;
             let lowered = lw.lower_in(Place::Let(super::scope::key(name)), |lw| lw.lower_definition(name, value));
             lw.in_let = false;
+            if matches!(lowered, Some(Val::S(_))) && lw.in_degrees(value) {
+                lw.degree_lets.insert(super::scope::key(name));
+            }
             match lowered {
                 Some(v) => {
                     let plain = name.unraw().to_string();

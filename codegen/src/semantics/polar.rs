@@ -26,11 +26,11 @@
 //!
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
-//! sets it to an angle), or one whose value is written in degrees. A name written as a length
-//! elsewhere (a coordinate of a position, the length of `@`) that a sine takes only as a
-//! fraction of itself (`sin(x / 2)`, the 2 perhaps a radius written as a number) is of no
-//! certain kind. A length times an angle (`(r * phi) @ 0`), a constant, or a name of no known
-//! kind stays the length it is written as.
+//! sets it to an angle), or one whose value is written in degrees (a scalar `let` of such a
+//! value too). A name written as a length elsewhere (a coordinate of a position, the length of
+//! `@`) that a sine takes only as a fraction of itself (`sin(x / 2)`, the 2 perhaps a radius
+//! written as a number) is of no certain kind. A length times an angle (`(r * phi) @ 0`), a
+//! constant, or a name of no known kind stays the length it is written as.
 
 use super::dynamics::{leaf_name, sets_to_angle};
 use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair};

@@ -33,6 +33,11 @@ fn describe(s: Symbol) -> &'static str {
 impl Lowerer {
     /// Whether `name` is declared as a parameter, input or unknown (not a `let` that stands
     /// for one).
+    /// Whether `e` is written in degrees, directly or through a `let` of such a value.
+    pub(super) fn in_degrees(&self, e: &Expr) -> bool {
+        e.written_in_degrees_with(&|id| self.degree_lets.contains(&key(id)))
+    }
+
     pub(super) fn declares_leaf(&self, name: &Ident) -> bool {
         let leaf = |s: &Symbol| matches!(s, Symbol::Param(_) | Symbol::Input(_) | Symbol::Unknown(_));
         self.scope.symbols.get(&key(name)).is_some_and(|(s, _)| leaf(s))
