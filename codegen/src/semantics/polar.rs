@@ -106,9 +106,9 @@ impl Angles {
         self.degrees.contains(&leaf) && !self.swapped.contains(&leaf)
     }
 
-    /// Whether `leaf` is an angle by what the mechanism says of it with the term `t` set
-    /// aside: written in degrees, an angle of another term or of a sine or cosine, or set to
-    /// one by an `eq`. `arguments` are the trigonometric arguments found without `t`.
+    /// Whether `leaf` is an angle by what the rest of the mechanism says of it: written in
+    /// degrees, an angle of a sine or cosine among `arguments` (found with the terms in
+    /// question set aside), or set to one by an `eq`.
     fn apart(&self, g: &Graph, leaf: Leaf, arguments: &[NodeId]) -> bool {
         let placed = self.placed_as_lengths.contains(&leaf);
         !self.swapped.contains(&leaf)
@@ -165,7 +165,8 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
         }
     }
     let g = &lw.graph;
-    let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &suspects);
+    // Found at the first term with an angle to judge: most mechanisms have none.
+    let mut arguments = None;
     for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| direct(t)) {
         let why = match t.leaf {
             Some(leaf) if !t.degrees => angles.why(&lw.graph, leaf, &t.length),
@@ -175,24 +176,32 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
             angles.lengths.extend(t.leaf);
             continue;
         };
-        let fix = match angle_of(lw, angles, t, &arguments) {
-            AngleOf::Constant => arc(t),
-            AngleOf::Angle => both_angles(t),
-            AngleOf::Length(leaves) => {
-                angles.swapped.extend(leaves);
-                swap(t)
+        let fix = if t.constant_angle {
+            arc(t)
+        } else {
+            let arguments =
+                arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, &angles.roots, &suspects));
+            match angle_of(lw, angles, t, arguments) {
+                AngleOf::Angle => both_angles(t),
+                AngleOf::Length(leaves) => {
+                    angles.swapped.extend(leaves);
+                    swap(t)
+                }
             }
         };
         found.push((i, length_error(t, &why, &fix)));
     }
     for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| !direct(t)) {
         let Some(why) = why_expression(lw, angles, t.node) else { continue };
+        if t.constant_angle {
+            found.push((i, length_error(t, &why, &arc(t))));
+            continue;
+        }
         // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
         // angle of `@` is an angle by that term alone): both ways are told, where both could be.
         let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).copied().collect();
         let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &avoided);
         let fix = match angle_of(lw, angles, t, &arguments) {
-            AngleOf::Constant => arc(t),
             AngleOf::Angle => both_angles(t),
             AngleOf::Length(_) => format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor),
         };
@@ -202,10 +211,9 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
     found.into_iter().map(|(_, e)| e).collect()
 }
 
-/// What the angle of a polar term whose length is an angle is, by the rest of the mechanism.
+/// What the angle (not a constant) of a polar term whose length is an angle is, by the rest
+/// of the mechanism.
 enum AngleOf {
-    /// A constant: no length to swap with.
-    Constant,
     /// An angle by the rest of the mechanism: swapping cannot help.
     Angle,
     /// No angle but by this term: the two are swapped, and these leaves of it are lengths.
@@ -217,9 +225,6 @@ enum AngleOf {
 /// name that only such terms make an angle (`l` in `psi @ l`) is a length written in the wrong
 /// place.
 fn angle_of(lw: &Lowerer, angles: &Angles, t: &NamedLength, arguments: &[NodeId]) -> AngleOf {
-    if t.constant_angle {
-        return AngleOf::Constant;
-    }
     let g = &lw.graph;
     let leaves = g.leaves_of(&[t.angle_node]);
     let apart: HashSet<Leaf> = leaves.iter().copied().filter(|&l| angles.apart(g, l, arguments)).collect();
