@@ -597,7 +597,7 @@ fn a_coupler_shorter_than_the_tolerance_of_its_loop_is_not_determined() {
 #[test]
 fn a_newton_coupler_shorter_than_the_tolerance_is_not_carried_past_every_turn() {
     let guess = [0.5, 1.5];
-    let cases = [(1e-300, PI / 3.0), (1e-300, PI / 3.0 + 1e-12), (1e-20, PI / 3.0 + 1e-12)];
+    let cases = [(1e-300, PI / 3.0), (1e-300, PI / 3.0 + 1e-12), (1e-20, PI / 3.0 + 1e-12), (1e-20, PI / 3.0)];
     for scale in [1.0, 1e-3, 1e3] {
         for (coupler, phi) in cases {
             let at = format!("scale {scale}, coupler {coupler:e}, phi {phi}");
@@ -605,11 +605,67 @@ fn a_newton_coupler_shorter_than_the_tolerance_is_not_carried_past_every_turn() 
             let closed = FourBar { a: scale, b: coupler * scale, c: scale, d: scale, pc: 1.4 * scale, pa: 0.5 };
             let cfg = NewtonConfig::default();
             assert!(matches!(closed.position_flat(&[phi], &guess, &cfg), Err(Error::Singular { .. })), "{at}");
-            match m.position_flat(&[phi], &guess, &cfg) {
-                Err(e @ Error::Singular { .. }) => {
-                    assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
+            let results = [
+                m.position_flat(&[phi], &guess, &cfg).map(|(q, _)| q),
+                m.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q),
+            ];
+            for r in results {
+                match r {
+                    Err(e @ Error::Singular { .. }) => {
+                        assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
+                    }
+                    other => panic!("{at}: {other:?}"),
                 }
-                other => panic!("{at}: {other:?}"),
+            }
+        }
+    }
+}
+
+/// The largest miss, over `samples` angles of the coupler `b`, of the loop of the four-bar
+/// `[a, b, c, d]` at the input `phi` with the rocker at `gamma`, relative to the loop's size
+/// `a + b + c + d`: computed here in plain f64 from the loop `a @ phi + b @ beta == (d, 0) + c
+/// @ gamma`, independent of the solver.
+fn worst_miss_over_coupler_angles([a, b, c, d]: [f64; 4], phi: f64, gamma: f64, samples: usize) -> f64 {
+    let miss = |beta: f64| {
+        let x = a * phi.cos() + b * beta.cos() - d - c * gamma.cos();
+        let y = a * phi.sin() + b * beta.sin() - c * gamma.sin();
+        x.hypot(y)
+    };
+    (0..samples).map(|k| miss(TAU * k as f64 / samples as f64)).fold(0.0, f64::max) / (a + b + c + d)
+}
+
+/// The Newton twin's coupler of `1e-20` at `fl(π/3)`, where the crank pin lies within rounding
+/// of the rocker's reach: with the rocker along the pivot-to-pin direction, every coupler angle
+/// closes the loop within `4 eps` of its size (plain f64, over 64 coupler angles), far within
+/// the tolerance `1e-12`, so the coupler's angle is not determined. Newton converged on the
+/// rocker and carried the coupler's angle to an arbitrary `-5468` rad (`-38494` at size `1e-3`),
+/// which it returned as the solution, position and analogs, where the closed form reports the
+/// singular position of block 0. It is now that singular position, from guesses on either side.
+#[test]
+fn a_newton_coupler_that_every_angle_closes_is_singular_where_it_moved_turns_away() {
+    let phi = PI / 3.0;
+    for scale in [1.0, 1e-3, 1e3] {
+        let links = [scale, 1e-20 * scale, scale, scale];
+        // The rocker from its pivot to the crank pin, which the coupler cannot move off.
+        let gamma = phi.sin().atan2(phi.cos() - 1.0);
+        let worst = worst_miss_over_coupler_angles(links, phi, gamma, 64);
+        assert!(worst <= 4.0 * f64::EPSILON, "scale {scale}: every coupler angle misses by {worst:e} at most");
+        let [a, b, c, d] = links;
+        let m = FourBarNewton { a, b, c, d, pc: 1.4 * scale, pa: 0.5 };
+        let cfg = NewtonConfig::default();
+        for guess in [[0.5, 1.5], [-2.0, 2.5]] {
+            let at = format!("scale {scale}, guess {guess:?}");
+            let results = [
+                m.position_flat(&[phi], &guess, &cfg).map(|(q, _)| q),
+                m.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q),
+            ];
+            for r in results {
+                match r {
+                    Err(e @ Error::Singular { .. }) => {
+                        assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
+                    }
+                    other => panic!("{at}: {other:?}"),
+                }
             }
         }
     }

@@ -224,7 +224,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         // ends within the tolerance of a root only from a set of guesses about the tolerance
         // wide; the position is right even then, only on another turn.
         if self.iterations > 1 && beyond_half_turn(&self.z, self.guess) {
-            self.back_to_guess_turns(rho, cfg, eval, mags, last);
+            self.back_to_guess_turns(rho, cfg, eval, mags, last)?;
         }
         // An angle carried beyond the precise bound from a guess inside it is not resolved
         // there: a root of a block whose angle every value closes (a link shorter than the
@@ -260,6 +260,10 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// also makes the evaluation describe the returned position. The move is kept only if the
     /// residual there, corrected or not, is no worse than `rho` (or the tolerance): it always
     /// is for an equation that repeats, so a mistaken mark could not return a wrong position.
+    ///
+    /// An angle that moved so far may be one the block does not determine (see
+    /// [`Self::moved_angle_undetermined`]): then no position is returned but the block's
+    /// singular position, as the closed form reports it.
     #[cold]
     #[inline(never)]
     fn back_to_guess_turns(
@@ -269,9 +273,12 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
         mags: &impl MagnitudesOf<N, K, J>,
         last: &mut impl LastStep<N, K, J>,
-    ) {
+    ) -> Result<(), BlockFailure> {
         let (before, after, fallback);
         let turns = magnitudes_at!(mags, self.ev, before).turns;
+        if self.moved_angle_undetermined(&turns, cfg, eval, mags) {
+            return Err(self.undetermined(rho, cfg));
+        }
         let unmoved = self.z;
         let mut moved = false;
         for c in (0..N).filter(|&c| turns[c]) {
@@ -285,7 +292,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             }
         }
         if !moved {
-            return;
+            return Ok(());
         }
         note(SolvePath::TurnsMoved);
         last.forget();
@@ -307,6 +314,71 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             self.z = unmoved;
             eval(&self.z, self.ev);
             self.evaluations += 1;
+        }
+        Ok(())
+    }
+
+    /// Whether an angle (`turns`) that the iteration carried more than half a turn from its
+    /// guess closes the block within the residual tolerance at another angle too: the block
+    /// evaluated with that angle alone turned by [`PROBE_TURN`] from its root (on the guess's
+    /// turn), the others where the iteration ended. A link shorter than the tolerance of its
+    /// loop (a coupler of `1e-20` on a four-bar of size 1 whose crank pin lies on the rocker's
+    /// reach) closes it at every angle, and the final steps, through a column of its own size,
+    /// carry its angle anywhere (`-5468` rad): the data do not determine it. A determined
+    /// angle's terms change by about its link's length there, far beyond the tolerance. Each
+    /// such angle is probed by one evaluation, and the evaluation is made again at the end
+    /// position after any probe, so that it describes the position returned.
+    #[cold]
+    #[inline(never)]
+    fn moved_angle_undetermined(
+        &mut self,
+        turns: &[bool; N],
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
+        mags: &impl MagnitudesOf<N, K, J>,
+    ) -> bool {
+        let (mut undetermined, mut probed) = (false, false);
+        for c in (0..N).filter(|&c| turns[c] && (self.z[c] - self.guess[c]).abs() > core::f64::consts::PI) {
+            let (z, g) = (self.z[c], self.guess[c]);
+            // The root on the guess's turn; an angle too far out for its turns to be counted
+            // in doubles has no root to speak of: any angle probes it, the guess's.
+            let on_turn = unwrap_to_turn(z, g);
+            let root = if (on_turn - g).abs() < (z - g).abs() { on_turn } else { g };
+            let mut probe = self.z;
+            probe[c] = root + PROBE_TURN;
+            eval(&probe, self.ev);
+            self.evaluations += 1;
+            probed = true;
+            let (current, fallback);
+            let m = magnitudes_at!(mags, self.ev, current);
+            let rows = rows_at!(m, self.ev, fallback);
+            // Written so that a NaN fails.
+            if scaled_residual(&self.ev.f, rows) <= cfg.residual_tol {
+                undetermined = true;
+                break;
+            }
+        }
+        // A length's move probes nothing (its evaluation is still the end position's).
+        if probed {
+            eval(&self.z, self.ev);
+            self.evaluations += 1;
+        }
+        undetermined
+    }
+
+    /// The failure of a block that closes at every value of an angle (see
+    /// [`Self::moved_angle_undetermined`]): singular, with a zero pivot ratio, as the closed
+    /// form reports such a block (the factorisation's ratio is of the columns scaled to their
+    /// magnitudes, in which the angle's column is as long as any).
+    #[cold]
+    #[inline(never)]
+    fn undetermined(&self, rho: f64, cfg: &NewtonConfig) -> BlockFailure {
+        BlockFailure::Singular {
+            row: 0,
+            iterations: self.iterations,
+            residual: rho,
+            pivot_ratio: 0.0,
+            tolerance: cfg.singular_tol,
         }
     }
 
@@ -343,6 +415,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval, mags, &mut self.evaluations);
     }
 }
+
+/// How far [`Iter::moved_angle_undetermined`] turns an angle from its root to probe whether
+/// the block determines it: 2 rad, no whole fraction of a turn (an equation that repeats every
+/// half or third of a turn closes again there), and a chord of `2 sin 1 = 1.68` times the link.
+const PROBE_TURN: f64 = 2.0;
 
 /// Whether an angle (an unknown whose equations repeat every turn, `turns`) ended beyond
 /// `bound` (the configuration's `largest_precise_angle`) from a guess within it: no angle is
