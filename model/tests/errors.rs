@@ -789,3 +789,62 @@ fn a_rocker_below_the_rounding_of_its_loop_is_singular_read_and_compiled_alike()
         assert_eq!(explained, solved, "frame {frame}");
     }
 }
+
+kinloop_fixtures::declare! {
+    /// Text of [`GammaFirstFourBar`].
+    GAMMA_FIRST_TEXT => {
+        /// The fixtures' four-bar with its unknowns declared rocker first: the closed form's
+        /// dyad takes the coupler as its second link.
+        pub struct GammaFirstFourBar {
+            params a, b, c, d;
+            input phi;
+            unknowns gamma = 1.5, beta = 0.5;
+            loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        }
+    }
+}
+
+kinloop_fixtures::declare! {
+    /// Text of [`SlideDyad`].
+    SLIDE_DYAD_TEXT => {
+        /// A dyad whose first centre `(s, 0)` slides along the frame: a coefficient of its
+        /// equation folded to a constant.
+        pub struct SlideDyad {
+            params b, c, d;
+            input s;
+            unknowns beta = 0.1, gamma = 3.0;
+            loop sbcd: (s, 0) + b @ beta == (d, 0) + c @ gamma;
+        }
+    }
+}
+
+/// A dyad's second link below the rounding of its loop, where every angle of it closes the
+/// loop (`tests/solver/degenerate_dyad_links.rs` computes the loop in plain f64): the four-bar
+/// declared rocker first with a coupler of `1e-20` or `1e-300` at `fl(π/3)` and `π/3 + 1e-12`,
+/// and the sliding dyad (a coefficient folded) with a rocker of `1e-20` whose pivot the
+/// coupler's end reaches. The read model's solve, on the runtime's closed-form dyad as the
+/// compiled one is, reports the same singular position in block 0. Both returned an angle of
+/// rounding noise, or a `Domain` error where the coupler's square underflowed.
+#[test]
+fn a_second_link_below_the_rounding_is_singular_read_and_compiled_alike() {
+    let cfg = NewtonConfig::default();
+    for coupler in [1e-20, 1e-300] {
+        for phi in [std::f64::consts::PI / 3.0, std::f64::consts::PI / 3.0 + 1e-12] {
+            let compiled = GammaFirstFourBar { a: 1.0, b: coupler, c: 1.0, d: 1.0 };
+            let solved = compiled.solve(phi).map(|_| ()).unwrap_err();
+            assert!(matches!(solved, Error::Singular { .. }), "coupler {coupler:e}, phi {phi}: {solved:?}");
+            let mut model = read(GAMMA_FIRST_TEXT);
+            set(&mut model, &[("a", 1.0), ("b", coupler), ("c", 1.0), ("d", 1.0)]);
+            let step = model.solve(&[phi]).map(|_| ()).unwrap_err();
+            let explained = model.explain(&[phi], &[1.5, 0.5], &cfg, step);
+            assert_eq!(explained, solved, "coupler {coupler:e}, phi {phi}");
+        }
+    }
+    let compiled = SlideDyad { b: 1.0, c: 1e-20, d: 2.0 };
+    let solved = compiled.solve(1.0).map(|_| ()).unwrap_err();
+    assert!(matches!(solved, Error::Singular { .. }), "{solved:?}");
+    let mut model = read(SLIDE_DYAD_TEXT);
+    set(&mut model, &[("b", 1.0), ("c", 1e-20), ("d", 2.0)]);
+    let step = model.solve(&[1.0]).map(|_| ()).unwrap_err();
+    assert_eq!(model.explain(&[1.0], &[0.1, 3.0], &cfg, step), solved);
+}

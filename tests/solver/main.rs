@@ -18,6 +18,7 @@ mod closed_form_prop;
 mod decomposition;
 mod deferred_checks;
 mod deferred_entry_bound;
+mod degenerate_dyad_links;
 mod lever_singularity;
 mod mechanism_named_like_prelude;
 mod newton_restarts;

@@ -209,6 +209,20 @@ fn second_turns_freely([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> bool {
     worst <= f64::EPSILON * (l0 + l1 + e)
 }
 
+/// Whether a dyad of `links` `[e0, e1, l0², l1²]` has a link no longer than the rounding of its
+/// size `l0 + l1 + |e|` (one `eps` of it): where such a dyad assembles (its triangle closes, or
+/// its links in line close it within the tolerance), every angle of that link moves the loop by
+/// at most twice its length, below the rounding of the others, and the data do not determine
+/// its angle, whichever link it is (the declaration's order of the unknowns picks the first).
+/// A rocker of 1 on a parallelogram of 2e12 is not such a link (`1` against `8.9e-4`). A link
+/// whose square underflowed to zero is such a link beside others of normal squares; a size that
+/// overflows or vanishes says nothing, and a NaN fails.
+fn short_link([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> bool {
+    let (l0, l1, e) = (l0_sq.sqrt(), l1_sq.sqrt(), e0.hypot(e1));
+    let size = l0 + l1 + e;
+    size > 0.0 && size < f64::INFINITY && l0.min(l1) <= f64::EPSILON * size
+}
+
 /// How far a dyad's two links (of lengths `l0`, `l1`) fall short of closing the triangle with
 /// their centres' offset `e`, given `links` `[e0, e1, l0², l1²]`, relative to the dyad's size
 /// `l0 + l1 + |e|`: the longest of the three less the other two, `2 max - (l0 + l1 + |e|)`,
@@ -247,17 +261,29 @@ fn dyad_gap([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> f64 {
 fn dyad_touching(d2: f64, r2: f64, c: f64, links: [f64; 4], cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
     // Written so that a NaN takes the coefficients' verdict.
     if !(d2 < 0.0 && r2 >= f64::MIN_POSITIVE && readable(links)) {
-        return touching(d2, r2, c, cfg).map_err(|f| dyad_failure(f, links, cfg));
+        let limit = touching(d2, r2, c, cfg).map_err(|f| dyad_failure(f, links, cfg))?;
+        return in_line_determined(limit, links, cfg);
     }
     if turns_freely(links, cfg) || second_turns_freely(links) {
         return Err(undetermined(cfg));
     }
     let gap = dyad_gap(links);
     if gap <= cfg.residual_tol.max(16.0 * f64::EPSILON) {
-        Ok(0.0)
+        in_line_determined(0.0, links, cfg)
     } else {
         Err(BlockFailure::NoAssembly { row: 0, iterations: 0, evaluations: 0, residual: gap })
     }
+}
+
+/// The limit position `offset` of a dyad of `links` `[e0, e1, l0², l1²]` (its links in line),
+/// unless a link is below the rounding of its size ([`short_link`]): then that link's angle is
+/// not determined, singular as [`undetermined`]. A coupler of `1e-20` declared as the dyad's
+/// second link, `8.7e-13` of its loop's size short of the rocker's pivot, was given an angle
+/// from the rounding (`-1.047` rad, with a velocity analog of `8e18`), where declared as the
+/// first it turns freely ([`turns_freely`]); with its square underflowed to zero, the division
+/// by its length made its angle NaN, reported as an equation outside its domain.
+fn in_line_determined(offset: f64, links: [f64; 4], cfg: &NewtonConfig) -> Result<f64, BlockFailure> {
+    if short_link(links) { Err(undetermined(cfg)) } else { Ok(offset) }
 }
 
 /// Whether a dyad's `links` `[e0, e1, l0², l1²]` give its lengths to full precision: the
@@ -675,10 +701,10 @@ fn dyad_offset_cancelled(
     let d2 = dyad_d2(d2, r2, links);
     // `root_offset`'s test, its failure the dyad's.
     if d2 >= 0.0 && r2 >= f64::MIN_POSITIVE {
-        // A triangle that closes, but whose second link is below the rounding of the others
-        // (a rocker of 1e-20 whose pivot the coupler's end reaches): its angle would be the
-        // rounding's. Tested here alone: such a triangle's `d2` always cancels.
-        if second_turns_freely(links) {
+        // A triangle that closes, but with a link below the rounding of the others (a rocker
+        // of 1e-20 whose pivot the coupler's end reaches): its angle would be the rounding's.
+        // Tested here alone: such a triangle's `d2` always cancels.
+        if second_turns_freely(links) || short_link(links) {
             return Err(undetermined(cfg));
         }
         Ok(root_offset_deferred(d2, flip))
@@ -727,10 +753,18 @@ const DYAD_CANCELLED: f64 = 1.0 / (1u64 << 20) as f64;
 /// `4 A²` for the triangle of sides `|e|`, `l0` and `l1` of `links` `[e0, e1, l0², l1²]`, by
 /// Kahan's ordering (sides `x >= y >= z`): `16 A² = (x + (y + z)) (z - (x - y)) (z + (x - y)) (x + (y - z))`,
 /// each factor a sum or a difference of values known to their rounding. Negative where the
-/// sides make no triangle (no root), as `r2 - c²` is.
+/// sides make no triangle (no root), as `r2 - c²` is, and (`-2^-1022`) where one side is a link
+/// below the rounding of the others ([`short_link`]).
 #[cold]
 #[inline(never)]
 fn dyad_d2_stable([e0, e1, l0, l1]: [f64; 4]) -> f64 {
+    // A link below the rounding of the others ([`short_link`]): its angle is the rounding's,
+    // so its triangle is taken for none. The callers' test of `d2` then fails into their
+    // cold judgement of circles that miss (`dyad_touching`), which reports it singular: a
+    // dyad with a coefficient folded (`folded_dyad_root_offset`) had no other cold branch.
+    if short_link([e0, e1, l0, l1]) {
+        return -f64::MIN_POSITIVE;
+    }
     let mut s = [l0.sqrt(), l1.sqrt(), e0.hypot(e1)];
     s.sort_by(|p, q| q.total_cmp(p));
     let [x, y, z] = s;
@@ -777,6 +811,9 @@ fn rescaled(
     let d2 = r2 - c * c;
     let d = match links {
         Some(links) if !(d2 >= 0.0 && r2 >= f64::MIN_POSITIVE) => dyad_touching(d2, r2, c, links, cfg)?,
+        // A triangle that closes with a link below the rounding of the others: its angle is
+        // the rounding's, as where the size needs no rescaling (`dyad_offset_cancelled`).
+        Some(links) if short_link(links) => return Err(undetermined(cfg)),
         _ => root_offset(d2, r2, c, flip, cfg)?,
     };
     Ok((k, [a, b, c], r2, d))

@@ -1,0 +1,146 @@
+//! A dyad with a link below the rounding of its size, in every path that solves it: the
+//! declaration's order of its unknowns (which link is the closed form's first), a coefficient
+//! folded to a constant, sizes beyond `1e±77` (the coefficients rescaled), and its Newton twin.
+//! Where the loop closes at every angle of the short link, that angle is not determined by the
+//! data: the singular position of the block, as the four-bar declared `beta, gamma` with a
+//! coupler of `1e-20` reports it. Each case's closing is computed here in plain f64, over 64
+//! angles of the short link, independent of the solver.
+
+use kinloop::{Error, Mechanism, NewtonConfig};
+use std::f64::consts::{PI, TAU};
+
+with_newton_twin! {
+    /// A four-bar whose unknowns are declared rocker first: the closed form's dyad takes the
+    /// rocker `c` as its first link and the coupler `b` as its second.
+    pub struct GammaFirst, GammaFirstNewton {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.2;
+        input phi;
+        unknowns gamma = 1.5, beta = 0.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+with_newton_twin! {
+    /// The same four-bar declared coupler first, as the fixtures' `FourBar`.
+    pub struct BetaFirst, BetaFirstNewton {
+        params a = 1.0, b = 3.0, c = 2.5, d = 3.2;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+with_newton_twin! {
+    /// A dyad whose first centre `(s, 0)` slides along the frame: the centres' offset has a
+    /// zero component, so a coefficient of its equation is folded to a constant.
+    pub struct SlideDyad, SlideDyadNewton {
+        params b, c, d;
+        input s;
+        unknowns beta = 0.1, gamma = 3.0;
+        loop sbcd: (s, 0) + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+with_newton_twin! {
+    /// [`SlideDyad`] declared rocker first.
+    pub struct SlideDyadGammaFirst, SlideDyadGammaFirstNewton {
+        params b, c, d;
+        input s;
+        unknowns gamma = 3.0, beta = 0.1;
+        loop sbcd: (s, 0) + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+/// The largest miss, relative to `size`, of the loop `p + short @ t == q` over `samples`
+/// angles `t`, with `p` and `q` the ends the long links put the short link between.
+fn worst_miss(p: [f64; 2], short: f64, q: [f64; 2], size: f64, samples: usize) -> f64 {
+    let miss = |t: f64| (p[0] + short * t.cos() - q[0]).hypot(p[1] + short * t.sin() - q[1]);
+    (0..samples).map(|k| miss(TAU * k as f64 / samples as f64)).fold(0.0, f64::max) / size
+}
+
+/// Panics unless `r` is the singular position of block 0.
+fn assert_singular_block_0<T: std::fmt::Debug>(r: Result<T, Error>, at: &str) {
+    match r {
+        Err(e @ Error::Singular { .. }) => {
+            assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}: {e}");
+        }
+        other => panic!("{at}: {other:?}"),
+    }
+}
+
+/// The four-bar of unit crank, rocker and frame with a coupler of `1e-20` or `1e-300` of them,
+/// at a crank angle of `fl(π/3)` (the crank pin `1 - 9.9e-17` from the rocker's pivot) and
+/// `π/3 + 1e-12` (`8.7e-13` beyond the rocker's reach, within the default tolerance `1e-12` of
+/// the loop's size): with the rocker towards the pin, every coupler angle closes the loop within
+/// the tolerance of its size. Declared `beta, gamma` the closed form reports the singular
+/// position of block 0. Declared `gamma, beta`, the coupler is the dyad's second link, and the
+/// closed form gave the coupler's angle from rounding (`-1.047` rad at `π/3 + 1e-12`, where the
+/// links in line were taken for the limit position) or, with the coupler's square underflowed
+/// to zero, a `Domain` error on the loop's equation `abcd.x` (the division by the second link's
+/// length); at sizes of `1e±100` (its coefficients rescaled) the coupler at `0.52` rad. It is
+/// now the same singular position of block 0, at every size, as is the Newton twin's.
+#[test]
+fn a_coupler_below_the_tolerance_is_singular_whichever_unknown_is_declared_first() {
+    let cfg = NewtonConfig::default();
+    // Beyond `1e±77` the closed form's coefficients are rescaled.
+    for scale in [1.0, 1e-3, 1e3, 1e100, 1e-100] {
+        for coupler in [1e-20, 1e-300] {
+            for phi in [PI / 3.0, PI / 3.0 + 1e-12] {
+                let at = format!("scale {scale}, coupler {coupler:e}, phi {phi}");
+                let (a, b, c, d) = (scale, coupler * scale, scale, scale);
+                let pin = [a * phi.cos(), a * phi.sin()];
+                let gamma = pin[1].atan2(pin[0] - d);
+                let rocker_end = [d + c * gamma.cos(), c * gamma.sin()];
+                let worst = worst_miss(pin, b, rocker_end, a + b + c + d, 64);
+                assert!(worst <= cfg.residual_tol, "{at}: every coupler angle misses by {worst:e} at most");
+                let beta_first = BetaFirst { a, b, c, d };
+                assert_singular_block_0(beta_first.kinematics_flat(&[phi], &[0.5, 1.5], &cfg), &at);
+                let closed = GammaFirst { a, b, c, d };
+                let newton = GammaFirstNewton { a, b, c, d };
+                let guess = [1.5, 0.5];
+                assert_singular_block_0(closed.kinematics_flat(&[phi], &guess, &cfg), &format!("{at}, closed form"));
+                assert_singular_block_0(closed.position_flat(&[phi], &guess, &cfg), &format!("{at}, closed form"));
+                assert_singular_block_0(newton.kinematics_flat(&[phi], &guess, &cfg), &format!("{at}, Newton"));
+                assert_singular_block_0(newton.position_flat(&[phi], &guess, &cfg), &format!("{at}, Newton"));
+            }
+        }
+    }
+}
+
+/// A dyad whose first centre slides along the frame (a coefficient folded to a constant), with
+/// a rocker, its SECOND link, of `1e-20` or `1e-100` of the coupler, at the slide's position
+/// where the coupler's end lies exactly on the rocker's pivot (`|s - d| = b`): every rocker
+/// angle closes the loop within `4 eps` of its size. The folded closed form, which has no cold
+/// branch for a triangle that closes, returned the rocker at `π/2` (the exact triangle's); at
+/// sizes of `1e±100` (rescaled) the same, though the four-bar of the fixtures, crank angle `0`
+/// on a frame of 2, was singular. Both, and the four-bar at `fl(π/3)` on a frame of 1 (the pin
+/// `9.9e-17` off the pivot) which gave the rocker `0` rad at `1e-100`, are the singular
+/// position of block 0.
+#[test]
+fn a_second_link_below_the_rounding_is_singular_folded_and_rescaled() {
+    let cfg = NewtonConfig::default();
+    for scale in [1.0, 1e-3, 1e3, 1e100, 1e-100] {
+        for rocker in [1e-20, 1e-100] {
+            let at = format!("scale {scale:e}, rocker {rocker:e}");
+            let (b, c, d, s) = (scale, rocker * scale, 2.0 * scale, scale);
+            // The coupler from the slide along the frame, its end on the pivot `(d, 0)`.
+            let worst = worst_miss([d, 0.0], c, [d, 0.0], b + c + (s - d).abs(), 64);
+            assert!(worst <= 4.0 * f64::EPSILON, "{at}: every rocker angle misses by {worst:e} at most");
+            let m = SlideDyad { b, c, d };
+            assert_singular_block_0(m.kinematics_flat(&[s], &[0.1, 3.0], &cfg), &format!("{at}, folded"));
+            assert_singular_block_0(m.position_flat(&[s], &[0.1, 3.0], &cfg), &format!("{at}, folded"));
+            for (frame, phi) in [(2.0, 0.0), (1.0, PI / 3.0)] {
+                let at = format!("{at}, four-bar of frame {frame} at {phi}");
+                let (a, b, c, d) = (scale, scale, rocker * scale, frame * scale);
+                let pin = [a * phi.cos(), a * phi.sin()];
+                let beta = (-pin[1]).atan2(d - pin[0]);
+                let end = [pin[0] + b * beta.cos(), pin[1] + b * beta.sin()];
+                let worst = worst_miss([d, 0.0], c, end, a + b + c + d, 64);
+                assert!(worst <= 4.0 * f64::EPSILON, "{at}: every rocker angle misses by {worst:e} at most");
+                let m = BetaFirst { a, b, c, d };
+                assert_singular_block_0(m.kinematics_flat(&[phi], &[0.5, 1.5], &cfg), &at);
+                assert_singular_block_0(m.position_flat(&[phi], &[0.5, 1.5], &cfg), &at);
+            }
+        }
+    }
+}
