@@ -929,3 +929,36 @@ fn a_one_angle_limit_is_judged_as_the_compiled_one() {
     // Every design closing at its limit, none missing it.
     assert_eq!(solved, 12);
 }
+
+declared! {
+    FOUR_BAR_NEWTON_TEXT =>
+    /// The fixtures' four-bar solved by Newton: one block of two angles.
+    #[kinloop(newton)]
+    pub struct FourBarNewton {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+/// A Newton block whose coupler of `1e-20` closes the loop at every angle (unit crank, rocker
+/// and frame at `fl(π/3)`: `tests/solver/closed_form.rs` computes the loop in plain f64): the
+/// iteration carries the coupler's angle turns away, and the block, probed with that angle
+/// turned, is the singular position. The run-time model, on the runtime's Newton, fails with
+/// the compiled block's error, at every size; both returned the coupler at `-5468` rad.
+#[test]
+fn a_newton_angle_every_value_closes_is_singular_read_and_compiled_alike() {
+    let cfg = NewtonConfig::default();
+    let phi = std::f64::consts::PI / 3.0;
+    for k in [1.0, 1e-3, 1e3] {
+        let compiled = FourBarNewton { a: k, b: 1e-20 * k, c: k, d: k };
+        let mut model = common::read(FOUR_BAR_NEWTON_TEXT);
+        common::set(&mut model, &[("a", k), ("b", 1e-20 * k), ("c", k), ("d", k)]);
+        let guess = [0.5, 1.5];
+        let c = compiled.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q).unwrap_err();
+        assert!(matches!(c, kinloop::Error::Singular { .. }), "size {k:e}: {c}");
+        let m = model.kinematics(&[phi], &guess, &cfg).map(|s| s.q.clone()).unwrap_err();
+        assert_eq!(model.explain(&[phi], &guess, &cfg, m), c, "size {k:e}");
+    }
+}
