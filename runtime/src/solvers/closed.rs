@@ -218,7 +218,11 @@ fn second_turns_freely([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> bool {
 /// whose square underflowed to zero is such a link beside others of normal squares; a size that
 /// overflows or vanishes says nothing, and a NaN fails.
 fn short_link([e0, e1, l0_sq, l1_sq]: [f64; 4]) -> bool {
-    let (l0, l1, e) = (l0_sq.sqrt(), l1_sq.sqrt(), e0.hypot(e1));
+    short_link_of(l0_sq.sqrt(), l1_sq.sqrt(), e0.hypot(e1))
+}
+
+/// [`short_link`] of the dyad's lengths: its links `l0`, `l1` and its centres' offset `e`.
+fn short_link_of(l0: f64, l1: f64, e: f64) -> bool {
     let size = l0 + l1 + e;
     size > 0.0 && size < f64::INFINITY && l0.min(l1) <= f64::EPSILON * size
 }
@@ -762,10 +766,10 @@ fn dyad_d2_stable([e0, e1, l0, l1]: [f64; 4]) -> f64 {
     // so its triangle is taken for none. The callers' test of `d2` then fails into their
     // cold judgement of circles that miss (`dyad_touching`), which reports it singular: a
     // dyad with a coefficient folded (`folded_dyad_root_offset`) had no other cold branch.
-    if short_link([e0, e1, l0, l1]) {
+    let mut s = [l0.sqrt(), l1.sqrt(), e0.hypot(e1)];
+    if short_link_of(s[0], s[1], s[2]) {
         return -f64::MIN_POSITIVE;
     }
-    let mut s = [l0.sqrt(), l1.sqrt(), e0.hypot(e1)];
     s.sort_by(|p, q| q.total_cmp(p));
     let [x, y, z] = s;
     0.25 * ((x + (y + z)) * (z - (x - y)) * (z + (x - y)) * (x + (y - z)))
