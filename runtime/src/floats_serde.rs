@@ -1,6 +1,6 @@
 //! Serialize and Deserialize of the crate's numbers (feature `serde`), exactly whatever their
 //! values: one convention for every type that holds them (a [`Table`](crate::Table)'s rows, a
-//! state's health, a synthesis report).
+//! state and a named state, a [`Vec2`](crate::Vec2), a synthesis report).
 //!
 //! Tables hold NaN where a value is not known, states an infinite smallest pivot where no block
 //! was factorised, synthesis reports infinities and NaN where a candidate is degenerate (the
@@ -11,6 +11,12 @@
 //! `None`; a compact binary format holds the `f64` itself. Reading takes a number, such a
 //! string, or `null` (what earlier writers wrote for any non-finite number) as NaN; where the
 //! field is an `Option`, `null` is `None`, as it always was.
+//!
+//! Types of known shape go through [`Floats`]; values of a generic type (a `Vec2<T>`'s
+//! components, a named state's fields) through [`within`], which applies the same convention to
+//! every `f64` inside any value.
+
+pub(crate) mod within;
 
 use serde::de::{DeserializeOwned, Deserializer, Error, Visitor};
 use serde::{Deserialize, Serialize, Serializer};

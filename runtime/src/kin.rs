@@ -165,9 +165,11 @@ impl<const N: usize, const NI: usize, const NO: usize> KinSink<N, NI, NO> for &m
 /// `d2q[u][i][j] = d2 q_u / d x_i d x_j`.
 ///
 /// With the feature `serde` a state serializes as nested sequences and reads back only into a
-/// mechanism of the same sizes. `health.min_pivot` is infinite when no block was factorised:
-/// JSON writes it as `"inf"`, which reads back as that infinity. Another value that is not
-/// finite needs a format that holds it (JSON writes it as `null`, which does not read back).
+/// mechanism of the same sizes, every number as it was, bit for bit (a NaN as a NaN). JSON has no
+/// NaN nor infinity: it gets them as the strings `"NaN"`, `"inf"` and `"-inf"` (as every number
+/// of the crate), and reads a number, such a string, or `null` (what earlier versions wrote for
+/// them) as NaN, except `health.min_pivot`, infinite when no block was factorised, where `null`
+/// reads as that infinity. A compact binary format holds the `f64`s themselves.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
     /// Input values (generalized coordinates), in declaration order.

@@ -1,6 +1,8 @@
 //! Serialize and Deserialize of the flat kinematic state (feature `serde`). serde has no
 //! implementations for arrays of a generic length, so a state goes through nested sequences;
-//! reading one back checks every length against the mechanism's sizes.
+//! reading one back checks every length against the mechanism's sizes. Every number, the solve
+//! report's too, is written and read as `crate::floats_serde` writes and reads it, so that a
+//! NaN or an infinity reads back as it was.
 
 use crate::kin::{DetSigns, Health, Kin};
 use crate::solvers::newton::SolveReport;
@@ -87,13 +89,14 @@ impl<const N: usize, const NI: usize, const NO: usize> TryFrom<KinRepr> for Kin<
 
 impl<const N: usize, const NI: usize, const NO: usize> Serialize for Kin<N, NI, NO> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        KinRepr::from(*self).serialize(s)
+        crate::floats_serde::within::serialize(&KinRepr::from(*self), s)
     }
 }
 
 impl<'de, const N: usize, const NI: usize, const NO: usize> Deserialize<'de> for Kin<N, NI, NO> {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        Kin::try_from(KinRepr::deserialize(d)?).map_err(serde::de::Error::custom)
+        let repr: KinRepr = crate::floats_serde::within::deserialize(d)?;
+        Kin::try_from(repr).map_err(serde::de::Error::custom)
     }
 }
 

@@ -26,12 +26,27 @@ use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 /// let n: kinloop_runtime::nalgebra::Vector2<f64> = v.into();
 /// assert_eq!(Vec2::from(n), v);
 /// ```
+///
+/// With the feature `serde` a vector is `{"x": .., "y": ..}` for any component type that
+/// serializes, and every `f64` within reads back as it was written, bit for bit: a
+/// self-describing format such as JSON, which has no NaN nor infinity, gets those as the strings
+/// `"NaN"`, `"inf"`, `"-inf"` (where it wrote `null`, which did not read back), and reads a
+/// number, such a string, or `null` as NaN; a compact binary format holds the `f64` itself. The
+/// components pass through an adapter of the format rather than a trait of their type: the
+/// structs `mechanism!` generates hold `Vec2<T>` for any `T` they are given, with no more known of
+/// it than that it serializes, and `Vec2<[f64; N]>` or a user's own `T` keep serializing.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(serialize = "T: serde::Serialize", deserialize = "T: serde::Deserialize<'de>"))
+)]
 pub struct Vec2<T = f64> {
     /// X component.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub x: T,
     /// Y component.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub y: T,
 }
 

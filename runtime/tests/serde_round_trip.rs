@@ -287,3 +287,132 @@ fn a_synthesis_report_with_non_finite_values_reads_back_exactly() {
     let err = serde_json::from_str::<SynthesisReport>(&word).unwrap_err().to_string();
     assert!(err.contains("expected a number, \"inf\", \"-inf\", \"NaN\", or null for NaN"), "{err}");
 }
+
+/// The edge values of `f64` with their IEEE-754 bits, as `csv_round_trip_bits.py` (beside this
+/// file) prints them from Python's own doubles: NaN, both infinities, both zeros, the smallest
+/// and largest subnormals, the smallest normal, the largest finite magnitude, a long decimal.
+const EDGES: [(f64, u64); 11] = [
+    (f64::NAN, 0x7ff8_0000_0000_0000),
+    (f64::INFINITY, 0x7ff0_0000_0000_0000),
+    (f64::NEG_INFINITY, 0xfff0_0000_0000_0000),
+    (0.0, 0x0000_0000_0000_0000),
+    (-0.0, 0x8000_0000_0000_0000),
+    (5e-324, 0x0000_0000_0000_0001),
+    (-2.225073858507201e-308, 0x800f_ffff_ffff_ffff),
+    (2.2250738585072014e-308, 0x0010_0000_0000_0000),
+    (1e308, 0x7fe1_ccf3_85eb_c8a0),
+    (-1.7976931348623157e308, 0xffef_ffff_ffff_ffff),
+    (0.30000000000000004, 0x3fd3_3333_3333_3334),
+];
+
+/// `v` is the edge value of bits `bits` (any NaN for the NaN: its payload is not kept).
+fn is_edge(v: f64, bits: u64) -> bool {
+    if f64::from_bits(bits).is_nan() { v.is_nan() } else { v.to_bits() == bits }
+}
+
+/// A state holding every edge value in every field, the `k`-th number (row-major, in field
+/// order) the `k`-th edge value cyclically; the solve report's residual infinite.
+fn edge_state() -> kinloop_runtime::Kin<3, 2, 2> {
+    use kinloop_runtime::{Health, Kin, SolveReport};
+    let mut k = 0;
+    let mut next = || {
+        k += 1;
+        EDGES[(k - 1) % EDGES.len()].0
+    };
+    Kin {
+        x: [next(), next()],
+        q: [next(), next(), next()],
+        dq: [[next(), next()], [next(), next()], [next(), next()]],
+        d2q: std::array::from_fn(|_| [[next(), next()], [next(), next()]]),
+        out: [next(), next()],
+        dout: [[next(), next()], [next(), next()]],
+        d2out: std::array::from_fn(|_| [[next(), next()], [next(), next()]]),
+        report: SolveReport::given(f64::INFINITY),
+        health: Health { min_pivot: 0.25, ..Health::default() },
+    }
+}
+
+/// Every number of a state in field order, row-major.
+fn numbers(k: &kinloop_runtime::Kin<3, 2, 2>) -> Vec<f64> {
+    let mut v = Vec::new();
+    v.extend(k.x);
+    v.extend(k.q);
+    v.extend(k.dq.iter().flatten());
+    v.extend(k.d2q.iter().flatten().flatten());
+    v.extend(k.out);
+    v.extend(k.dout.iter().flatten());
+    v.extend(k.d2out.iter().flatten().flatten());
+    v
+}
+
+/// Every number of `back` is the edge value `edge_state` put there, bit for bit.
+fn assert_edges(back: &kinloop_runtime::Kin<3, 2, 2>, text: &str) {
+    for (n, v) in numbers(back).into_iter().enumerate() {
+        let (_, bits) = EDGES[n % EDGES.len()];
+        assert!(is_edge(v, bits), "number {n}: {v:e} ({:#x}) for {bits:#x}: {text}", v.to_bits());
+    }
+}
+
+/// A state holding NaN, the infinities, a negative zero, subnormals and the largest finite value
+/// reads back from JSON as it was, bit for bit: JSON, which has no NaN nor infinity, wrote them
+/// as `null`, which did not read back ("invalid type: null, expected f64"); they are now the
+/// strings Rust prints. `null` written by hand, as earlier versions wrote, reads as NaN.
+#[test]
+fn a_state_of_edge_values_reads_back_from_json_bit_for_bit() {
+    let k = edge_state();
+    let json = serde_json::to_string(&k).unwrap();
+    assert!(json.contains(r#""x":["NaN","inf"],"q":["-inf",0.0,-0.0]"#), "{json}");
+    assert!(json.contains(r#""residual":"inf""#), "{json}");
+    let back: kinloop_runtime::Kin<3, 2, 2> =
+        serde_json::from_str(&json).unwrap_or_else(|e| panic!("{json} does not read back: {e}"));
+    assert_edges(&back, &json);
+    assert_eq!(back.report.residual, f64::INFINITY);
+    assert_eq!((back.report.iterations, back.health), (k.report.iterations, k.health));
+    // Written by hand, or by an earlier version: `null` for a number is NaN.
+    let nulls = json.replace(r#""NaN""#, "null").replace(r#""-inf""#, "null").replace(r#""inf""#, "null");
+    let old: kinloop_runtime::Kin<3, 2, 2> =
+        serde_json::from_str(&nulls).unwrap_or_else(|e| panic!("{nulls} does not read: {e}"));
+    assert!(old.x[0].is_nan() && old.x[1].is_nan() && old.q[0].is_nan() && old.report.residual.is_nan(), "{old:?}");
+    assert_eq!(old.q[2].to_bits(), (-0.0f64).to_bits());
+}
+
+/// A compact binary format (CBOR, not human-readable) holds a state's `f64`s themselves, not
+/// the strings JSON gets: the edge values read back bit for bit, and no number is text.
+#[test]
+fn a_state_of_edge_values_reads_back_from_cbor_as_numbers() {
+    let k = edge_state();
+    let mut bytes = Vec::new();
+    ciborium::into_writer(&k, &mut bytes).unwrap();
+    let text = String::from_utf8_lossy(&bytes).into_owned();
+    assert!(!text.contains("NaN") && !text.contains("inf"), "{text}");
+    let back: kinloop_runtime::Kin<3, 2, 2> = ciborium::from_reader(bytes.as_slice()).unwrap();
+    assert_edges(&back, &text);
+    assert_eq!(back.report.residual, f64::INFINITY);
+}
+
+/// A vector of any component type reads back from JSON with every number as it was: `Vec2<f64>`
+/// and the several inputs' analogs `Vec2<[f64; 2]>` (serde_json's `null` for a NaN or an
+/// infinity did not read back), and a component type without numbers as before.
+#[test]
+fn vectors_of_edge_values_read_back_from_json_bit_for_bit() {
+    for pair in EDGES.windows(2) {
+        let v = Vec2::new(pair[0].0, pair[1].0);
+        let json = serde_json::to_string(&v).unwrap();
+        let back: Vec2 = serde_json::from_str(&json).unwrap_or_else(|e| panic!("{json}: {e}"));
+        assert!(is_edge(back.x, pair[0].1) && is_edge(back.y, pair[1].1), "{json}: {back:?}");
+    }
+    let many = Vec2::new([f64::NAN, -0.0], [f64::NEG_INFINITY, -1.7976931348623157e308]);
+    let json = serde_json::to_string(&many).unwrap();
+    assert_eq!(json, r#"{"x":["NaN",-0.0],"y":["-inf",-1.7976931348623157e+308]}"#);
+    let back: Vec2<[f64; 2]> = serde_json::from_str(&json).unwrap();
+    assert!(back.x[0].is_nan() && back.x[1].to_bits() == 0x8000_0000_0000_0000, "{back:?}");
+    assert_eq!(back.y, many.y);
+    let by_hand: Vec2 = serde_json::from_str(r#"{"x":null,"y":2}"#).unwrap();
+    assert!(by_hand.x.is_nan() && by_hand.y == 2.0, "{by_hand:?}");
+    let words = Vec2::new("a".to_string(), "inf".to_string());
+    assert_eq!(round_trip(&words), words);
+    let mut bytes = Vec::new();
+    ciborium::into_writer(&many, &mut bytes).unwrap();
+    let cbor: Vec2<[f64; 2]> = ciborium::from_reader(bytes.as_slice()).unwrap();
+    assert!(cbor.x[0].is_nan() && cbor.x[1].to_bits() == 0x8000_0000_0000_0000 && cbor.y == many.y);
+}

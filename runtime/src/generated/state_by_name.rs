@@ -6,27 +6,49 @@ use crate::solvers::newton::SolveReport;
 
 /// A generated state's named fields: inputs `I`, unknowns `U` with their analogs `UV`, `UA`,
 /// outputs `O` with theirs `OV`, `OA`, and the solve's report and health. A generated state
-/// serializes through it (`serde(into, from)`), so a state's JSON names every value.
+/// serializes through it (`serde(into, from)`), so a state's JSON names every value. Every
+/// number within is written and read as `crate::floats_serde` writes and reads it (the generated
+/// structs derive serde for `f64` fields, which JSON wrote as `null` when not finite), so that a
+/// state's NaN and infinities read back as they were.
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(bound(
+        serialize = "I: serde::Serialize, U: serde::Serialize, UV: serde::Serialize, UA: serde::Serialize, \
+                 O: serde::Serialize, OV: serde::Serialize, OA: serde::Serialize",
+        deserialize = "I: serde::Deserialize<'de>, U: serde::Deserialize<'de>, UV: serde::Deserialize<'de>, \
+                   UA: serde::Deserialize<'de>, O: serde::Deserialize<'de>, OV: serde::Deserialize<'de>, \
+                   OA: serde::Deserialize<'de>"
+    ))
+)]
 pub struct StateByName<I, U, UV, UA, O, OV, OA> {
     /// The input values.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub input: I,
     /// Positions of the unknowns.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub q: U,
     /// Velocity analogs.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub dq: UV,
     /// Acceleration analogs.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub d2q: UA,
     /// Output values.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub out: O,
     /// Velocity analogs of the outputs.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub dout: OV,
     /// Acceleration analogs of the outputs.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub d2out: OA,
     /// Diagnostics of the position solve.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub report: SolveReport,
     /// Conditioning and assembly mode of each block.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde::within"))]
     pub health: Health,
 }
 
