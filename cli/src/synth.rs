@@ -110,8 +110,16 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             if !(max.is_finite() && max > 0.0) {
                 return Err(exit::usage(format!("--max-error {max} must be a finite number above 0")));
             }
-            // In the library's units: an angle's error in radians.
+            // In the library's units: an angle's error in radians. A bound so small that it is
+            // 0 there is said in the unit typed (the library would name its 0).
+            let max_typed = max;
             let max = max / Units::of(model, req).error;
+            if max == 0.0 {
+                return Err(exit::usage(format!(
+                    "--max-error {} is 0 in radians: give a larger bound (in degrees with --deg)",
+                    Number(max_typed)
+                )));
+            }
             let c = Constraints::default().with_max_error(max);
             problem.with_constraints(&c).map_err(|e| problem_error(&name, e, req))?
         }
@@ -247,9 +255,17 @@ fn design(vary: &str) -> Result<Design, Failed> {
     Ok(d)
 }
 
-/// An angle given in degrees with `--deg` in radians; any other value as it is.
-fn angle_in(kind: QuantityKind, deg: bool, v: f64) -> f64 {
-    if deg && kind == QuantityKind::Angle { v.to_radians() } else { v }
+/// An angle given in degrees with `--deg` in radians; any other value as it is. An angle so
+/// many turns out that its radians round by more than a solve's precision is refused as the
+/// other commands refuse it, naming the value as typed (`given` says where): converted without
+/// a word, targets at 1e17 degrees were rejected as "no assembly".
+fn angle_in(kind: QuantityKind, deg: bool, v: f64, given: impl FnOnce() -> String) -> Result<f64, Failed> {
+    if deg && kind == QuantityKind::Angle { crate::solve::radians_of(v, &given()) } else { Ok(v) }
+}
+
+/// Where target `k` of the file `targets` gives `what` (`the input`), for [`angle_in`].
+fn target_value(targets: &Path, k: usize, what: &str) -> String {
+    format!("{}: target {k}'s {what}", targets.display())
 }
 
 /// The task of `--path` or `--function` over the rows.
@@ -282,41 +298,21 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                     }
                     let kind = input_kind.unwrap_or(QuantityKind::Other);
                     let (lo, hi) = match req.range {
-                        Some(r) => {
-                            let (lo, hi) = bounds(r, "--range")?;
-                            // Targets along no range at all: every candidate would be rejected.
-                            if lo == hi {
-                                return Err(exit::usage(format!("--range `{r}` is empty: give lo < hi")));
-                            }
-                            let (lo, hi) = (angle_in(kind, req.deg, lo), angle_in(kind, req.deg, hi));
-                            // Candidates are verified by sweeps between the targets' inputs, which
-                            // refuse a range of more turns than they follow: every candidate would
-                            // be rejected for "no assembly" instead. Each end over a turn first:
-                            // `hi - lo` of ends near the largest f64 overflows.
-                            let turns = hi / TAU - lo / TAU;
-                            if kind == QuantityKind::Angle && turns > MAX_TURNS {
-                                let span = match req.deg {
-                                    true => format!("{:.0} deg", 360.0 * MAX_TURNS),
-                                    false => format!("{:.1} rad", TAU * MAX_TURNS),
-                                };
-                                return Err(exit::usage(format!(
-                                    "--range {r} spans {turns:.3e} turns of the input, more than the {MAX_TURNS:e} \
-                                     turns a sweep follows: give a range at most {MAX_TURNS:e} turns long ({span})"
-                                )));
-                            }
-                            (lo, hi)
-                        }
+                        Some(r) => range_in(r, kind, req.deg)?,
                         None if kind == QuantityKind::Angle => (0.0, TAU),
                         None => return Err(exit::usage("targets without inputs need --range lo..hi")),
                     };
                     Ok(Task::path(point, rows.iter().map(xy)).untimed(lo, hi))
                 }
                 w if w == ni + 2 => {
-                    let kinds = model.input_kinds();
-                    let inputs = rows
-                        .iter()
-                        .map(|r| r[..ni].iter().zip(kinds).map(|(v, k)| angle_in(*k, req.deg, *v)).collect())
-                        .collect();
+                    let (kinds, names) = (model.input_kinds(), model.inputs());
+                    let input = |t: usize, i: usize| {
+                        let what = if ni == 1 { "input".to_string() } else { format!("input `{}`", names[i]) };
+                        angle_in(kinds[i], req.deg, rows[t][i], || target_value(req.targets, t, &what))
+                    };
+                    let inputs = (0..rows.len())
+                        .map(|t| (0..ni).map(|i| input(t, i)).collect::<Result<Vec<f64>, Failed>>())
+                        .collect::<Result<Vec<_>, Failed>>()?;
                     Ok(Task::path(point, rows.iter().map(xy)).timed_inputs(inputs))
                 }
                 _ => Err(exit::usage(format!(
@@ -347,11 +343,54 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
             }
             let out_kind = column_kind(model, output).unwrap_or(QuantityKind::Other);
             let kind = input_kind.unwrap_or(QuantityKind::Other);
-            let pairs = rows.iter().map(|r| (angle_in(kind, req.deg, r[0]), angle_in(out_kind, req.deg, r[1])));
+            let mut pairs = Vec::with_capacity(rows.len());
+            for (t, r) in rows.iter().enumerate() {
+                let x = angle_in(kind, req.deg, r[0], || target_value(req.targets, t, "input"))?;
+                let y = angle_in(out_kind, req.deg, r[1], || target_value(req.targets, t, &format!("`{output}`")))?;
+                pairs.push((x, y));
+            }
             Ok(Task::function(output, pairs))
         }
         _ => Err(exit::usage("give the channel: --path POINT or --function INPUT:OUTPUT")),
     }
+}
+
+/// `--range lo..hi` of an input of kind `kind` in the library's units (an angle's in radians,
+/// given in degrees with `deg`).
+fn range_in(r: &str, kind: QuantityKind, deg: bool) -> Result<(f64, f64), Failed> {
+    let (lo, hi) = bounds(r, "--range")?;
+    // Targets along no range at all: every candidate would be rejected.
+    if lo == hi {
+        return Err(exit::usage(format!("--range `{r}` is empty: give lo < hi")));
+    }
+    // Candidates are verified by sweeps between the targets' inputs, which refuse a range of
+    // more turns than they follow: every candidate would be rejected for "no assembly" instead.
+    // Counted in the unit typed, before the conversion (which refuses ends beyond a solve's
+    // precision, a shorter reach), so that the range is told how long it may be. Each end over
+    // a turn first: `hi - lo` of ends near the largest f64 overflows.
+    let turn = if deg { 360.0 } else { TAU };
+    let turns = hi / turn - lo / turn;
+    if kind == QuantityKind::Angle && turns > MAX_TURNS {
+        let span = match deg {
+            true => format!("{:.0} deg", 360.0 * MAX_TURNS),
+            false => format!("{:.1} rad", TAU * MAX_TURNS),
+        };
+        return Err(exit::usage(format!(
+            "--range {r} spans {turns:.3e} turns of the input, more than the {MAX_TURNS:e} turns a sweep follows: \
+             give a range at most {MAX_TURNS:e} turns long ({span})"
+        )));
+    }
+    let given = || format!("--range {r}");
+    let (lo, hi) = (angle_in(kind, deg, lo, given)?, angle_in(kind, deg, hi, given)?);
+    // Ends apart in degrees can be one number in radians (subnormals that round to 0): the
+    // library would name the radians, not these.
+    if lo == hi {
+        return Err(exit::usage(format!(
+            "--range `{r}` is empty in radians: both ends are {} rad; give ends further apart",
+            Number(lo)
+        )));
+    }
+    Ok((lo, hi))
 }
 
 /// The kind of the unknown or output `name` (the library names a missing one).

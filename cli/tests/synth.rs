@@ -673,3 +673,51 @@ fn a_design_variable_named_as_the_command_s_own_column_is_a_usage_error() {
     let (header, _) = csv(&out);
     assert_eq!(header[..4], ["rank", "start", "valid", "offset"]);
 }
+
+/// Angles in degrees with `--deg` are refused where they cannot be converted to radians as the
+/// user typed them, naming the value typed, as the other commands refuse them: a target's input
+/// or a `--range` end so many turns out that its radians round by more than a solve's precision
+/// (1e17 degrees are 1.7453292519943295e15 rad, where doubles are 2^-2 rad apart, which is
+/// 14.32394487827058 degrees: Python's `math.degrees(math.ulp(math.radians(1e17)))`), and a
+/// range or an error bound so small that it is 0 in radians (`math.radians(5e-324)` and
+/// `math.radians(1e-323)` are both 0.0). They were converted without a word: the targets at
+/// 1e17 degrees were rejected as "no assembly", the range 5e-324..1e-323 said "free timing
+/// within [0, 0]", the bound 5e-324 "max_error is 0", numbers the user did not type.
+#[test]
+fn degrees_that_do_not_convert_are_refused_naming_the_value_typed() {
+    let four_bar = shipped("coupler_four_bar.kl");
+    let stderr = |o: &Output| String::from_utf8_lossy(&o.stderr).to_string();
+    let rows: Vec<String> =
+        (0..5).map(|k| format!("{:?},{},{}", 1e17 + 64.0 * k as f64, 1.0 + 0.1 * k as f64, 2.0)).collect();
+    let far = file("synth_far_degrees.csv", &format!("phi,x,y\n{}\n", rows.join("\n")));
+    let o =
+        kinloop(&["synth", &four_bar, "--targets", &far, "--path", "p", "--deg", "--vary", "a=1..2", "--starts", "2"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let want = "target 0's input: 1e17 degrees are too many turns out to convert to radians to a solve's precision \
+                (the doubles of the radians there are 14.32394487827058 degrees apart";
+    assert!(stderr(&o).contains(&far) && stderr(&o).contains(want), "{}", stderr(&o));
+    let untimed = untimed_targets("synth_far_range.csv");
+    let range = |r: &str| {
+        kinloop(&["synth", &four_bar, "--targets", &untimed, "--path", "p", "--deg", "--vary", "a=1..2", "--range", r])
+    };
+    let o = range("1e17..1.000000001e17");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--range 1e17..1.000000001e17: 1e17 degrees are too many turns out"), "{}", stderr(&o));
+    let o = range("5e-324..1e-323");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--range `5e-324..1e-323` is empty in radians: both ends are 0 rad")
+            && !stderr(&o).contains("[0, 0]"),
+        "{}",
+        stderr(&o)
+    );
+    let targets = function_targets("synth_fn_tiny_bound.csv", 0.0);
+    let args = ["synth", &four_bar, "--targets", &targets, "--function", "phi:gamma", "--deg", "--params", "d=3.2"];
+    let o = kinloop(&[&args[..], &["--vary", "a=0.77..1.43", "--max-error", "5e-324"]].concat());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--max-error 5e-324 is 0 in radians") && !stderr(&o).contains("max_error is 0"),
+        "{}",
+        stderr(&o)
+    );
+}
