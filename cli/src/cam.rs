@@ -206,6 +206,11 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     if !req.start.is_finite() {
         return Err(usage(format!("--start {} must be a finite number", Number(req.start))));
     }
+    // Degrees so many turns out that their radians round by more than a solve's precision are
+    // refused, as the other commands refuse them: the cam was found at the rounded inputs.
+    if req.deg {
+        crate::solve::radians_of(req.start, "--start")?;
+    }
     let columns = point_columns(model, req.point, req.point_option)?;
     let follower = match (fa.guide.as_deref(), fa.rocker.as_deref()) {
         (Some(g), None) => Follower::Translating(direction(g, "--guide")?),

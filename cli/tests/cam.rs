@@ -235,6 +235,16 @@ fn bad_requests_are_usage_errors() {
         ([&base[..], &["--rocker", "0,0", "--flat", "inf"]].concat(), "must be finite", 2),
         ([&base[..], &["--guide", "0,1", "--flat", "x"]].concat(), "--flat", 2),
         ([&base[..], &["--guide", "0,1", "--start", "1e300"]].concat(), "a turn of the cam from 1e300 is lost", 2),
+        // Degrees so many turns out that their radians round by more than a solve's precision
+        // are refused as `sweep --deg` and `dynamics --deg` refuse them (the cam was found at the
+        // rounded inputs without a word): the doubles there are `math.ulp(math.radians(3e8))`,
+        // 9.313225746154785e-10 rad, apart, 5.336085289072462e-8 degrees (Python).
+        (
+            [&base[..], &["--guide", "0,1", "--deg", "--start", "3e8"]].concat(),
+            "--start: 300000000 degrees are too many turns out to convert to radians to a solve's precision (the \
+             doubles of the radians there are 5.336085289072462e-8 degrees apart",
+            2,
+        ),
         (vec!["cam", cam.as_str(), "--point", "nope", "--guide", "0,1"], "its points: follower, rocker_pin", 2),
         (vec!["cam", five_bar.as_str(), "--point", "p", "--guide", "0,1"], "must have one input, an angle", 2),
         ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot create the plot", 73),
