@@ -290,6 +290,9 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
             let e = if req.deg { e.in_degrees(is_angle, degrees) } else { e };
             usage(format!("{name}: {e}"))
         }
+        // Where it failed, in the units given, as an animation's sweep says it (in radians
+        // with --deg it said `th1 = 1.5707963267948966` of the 90 typed).
+        DrawError::Sweep(e) => failed(&format!("the sweep failed: {}", in_units(e, &kinds, req.deg))),
         e => failed(&e),
     })?;
     let unreached = grid.cells.iter().filter(|c| c.is_none()).count();

@@ -311,6 +311,21 @@ fn a_grid_over_a_range_no_sweep_follows_is_a_usage_error() {
     );
 }
 
+/// A grid that cannot start (the five-bar's base, 5, longer than its other four links, 4 in all,
+/// closes nowhere) says where in degrees with `--deg`, the inputs as given: it said `th1 =
+/// 1.5707963267948966` of the 90 typed, where an animation's sweep says 90.
+#[test]
+fn a_grid_that_cannot_start_names_its_inputs_in_degrees() {
+    let path = out("five_bar_apart.html");
+    let p = path.display().to_string();
+    let file = shipped("five_bar.kl");
+    let apart = ["--params", "a=1,b=1,c=1,d=5,e=1", "--deg", "--from", "90,45", "--to", "200,200", "--samples", "3"];
+    let args = [&["animate", file.as_str(), "--grid", "--out", p.as_str()][..], &apart[..]].concat();
+    fails_without_output(&args, &path, 1, "cannot be assembled in `FiveBar` at th1 = 90, th2 = 45 (");
+    let stderr = String::from_utf8_lossy(&kinloop(&args).stderr).to_string();
+    assert!(!stderr.contains("1.5707963267948966"), "{stderr}");
+}
+
 /// A three-input mechanism for the default grid: a two-link arm on a slider, its tip `(x, y)`.
 const ARM_ON_SLIDER: &str = "pub struct ArmOnSlider {
     params a = 1.0, b = 0.8;
