@@ -288,7 +288,9 @@
 //! (the generated structs name serde through `kinloop`, so no serde dependency is needed).
 //! Through JSON, serde_json reads every number back to the bit with its feature
 //! `float_roundtrip` (`serde_json = { version = "1", features = ["float_roundtrip"] }`);
-//! without it, its faster parser may read the last bit of some numbers differently.
+//! without it, its faster parser may read the last bit of some numbers differently. JSON has
+//! no NaN nor infinity: a state's, a vector's, a table's or a report's are written as the
+//! strings `"NaN"`, `"inf"` and `"-inf"` and read back as they were (`null` reads as NaN).
 //! Configurations ([`SweepConfig`], [`NewtonConfig`], the optimisers) are built from their
 //! defaults with `with_*` methods: `SweepConfig::default().with_max_step(0.5)`.
 //!

@@ -392,7 +392,8 @@ fn a_state_of_edge_values_reads_back_from_cbor_as_numbers() {
 
 /// A vector of any component type reads back from JSON with every number as it was: `Vec2<f64>`
 /// and the several inputs' analogs `Vec2<[f64; 2]>` (serde_json's `null` for a NaN or an
-/// infinity did not read back), and a component type without numbers as before.
+/// infinity did not read back), and component types without numbers, or with optional ones,
+/// as before.
 #[test]
 fn vectors_of_edge_values_read_back_from_json_bit_for_bit() {
     for pair in EDGES.windows(2) {
@@ -411,6 +412,10 @@ fn vectors_of_edge_values_read_back_from_json_bit_for_bit() {
     assert!(by_hand.x.is_nan() && by_hand.y == 2.0, "{by_hand:?}");
     let words = Vec2::new("a".to_string(), "inf".to_string());
     assert_eq!(round_trip(&words), words);
+    // An optional component: `None` is `null` as always, `Some` of an infinity is not taken for it.
+    let optional = Vec2::new(Some(f64::INFINITY), None);
+    assert_eq!(serde_json::to_string(&optional).unwrap(), r#"{"x":"inf","y":null}"#);
+    assert_eq!(round_trip(&optional), optional);
     let mut bytes = Vec::new();
     ciborium::into_writer(&many, &mut bytes).unwrap();
     let cbor: Vec2<[f64; 2]> = ciborium::from_reader(bytes.as_slice()).unwrap();
