@@ -1202,3 +1202,20 @@ fn a_let_in_degrees_is_an_angle_where_a_length_belongs() {
     let e = errors(&format!("pub struct S {{ {head} let k = 2 * pi / 3; point p = (x, k) + k @ psi; }}"));
     assert!(e.is_empty(), "{e:#?}");
 }
+
+/// An unknown whose guess is written in degrees is declared an angle by it: the pinion's angle
+/// `w` (rolled into a length, `x == r * w`) is refused bare in a centre of mass as an angle, so
+/// a body turning with it and a torque on it are accepted. Both were refused as "not an angle".
+#[test]
+fn an_unknown_guessed_in_degrees_is_an_angle_a_body_turns_with() {
+    let head = "params r, l, e, m, j; input phi; unknowns psi, x, w = deg(30);
+                loop c: r @ phi == (x, e) + l @ psi; eq roll: x == r * w;";
+    for body in ["body b: mass m, com (x, e), inertia j, turns w;", "torque t on w = 1.0;"] {
+        assert_eq!(errors(&format!("pub struct S {{ {head} {body} }}")), Vec::<String>::new(), "{body}");
+    }
+    // The same unknown guessed in radians is known as an angle by nothing: still refused.
+    let e =
+        errors(&format!("pub struct S {{ {} body b: mass m, com (x, e), turns w; }}", head.replace("deg(30)", "0.5")));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`w` is not an angle"), "{e:#?}");
+}

@@ -247,11 +247,13 @@ impl Pending {
     /// equations' residuals and the output columns. A coordinate of a point is an angle where
     /// `angle_of` says so (as the check of positions' coordinates judges one: in degrees too,
     /// and not the angle of a term found swapped), `Some(true)` if its value is in degrees.
+    /// An angle of `turns` or `on` is one by the kinematics, or by its value written in
+    /// `degrees`, as a coordinate's is.
     pub(super) fn resolve(
         self,
         lw: &mut Lowerer,
-        outputs: &[NodeId],
-        residuals: &[NodeId],
+        (outputs, residuals): (&[NodeId], &[NodeId]),
+        degrees: &[Leaf],
         angle_of: &mut dyn FnMut(&Lowerer, Leaf) -> Option<bool>,
     ) -> DynamicsModel {
         let columns: HashMap<NodeId, usize> = outputs.iter().enumerate().rev().map(|(c, &n)| (n, c)).collect();
@@ -271,7 +273,11 @@ impl Pending {
                 AngleModel::Input(i) => Leaf::Input(*i as u16),
                 AngleModel::None => continue,
             };
-            let verdict = *verdicts.entry(leaf).or_insert_with(|| is_angle(&lw.graph, leaf, &arguments, residuals));
+            // A guess in degrees declares an angle (`unknowns w = deg(30);`): the check of a centre
+            // of mass refuses `w` there as one, so a body may turn with it.
+            let verdict = *verdicts
+                .entry(leaf)
+                .or_insert_with(|| degrees.contains(&leaf) || is_angle(&lw.graph, leaf, &arguments, residuals));
             if !verdict {
                 lw.errors.push(syn::Error::new(
                     id.span(),

@@ -227,7 +227,8 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let residuals: Vec<NodeId> = out.equations.iter().map(|e| e.residual).collect();
     let columns: Vec<NodeId> =
         out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
-    let mut angles = super::polar::Angles::new(&residuals, &columns, in_degrees(&globals));
+    let degrees = in_degrees(&globals);
+    let mut angles = super::polar::Angles::new(&residuals, &columns, degrees.clone());
     // The polar terms first, so that the angle of one found swapped is taken for the length it
     // is everywhere else; then the coordinates, so that the dynamics does not report one refused
     // there again. Their errors after the dynamics', in the order of the checks.
@@ -238,7 +239,8 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
         let name = super::dynamics::leaf_name(lw, leaf).unwrap_or_default();
         angles.why(&lw.graph, leaf, &name).map(|_| angles.in_degrees(leaf))
     };
-    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &residuals, &mut angle_of);
+    let kinematics = (columns.as_slice(), residuals.as_slice());
+    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, kinematics, &degrees, &mut angle_of);
     terms.into_iter().chain(refused).for_each(|e| lw.errors.push(e));
     super::polar::sums(&mut lw, &mut angles);
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.
