@@ -1219,3 +1219,20 @@ fn an_unknown_guessed_in_degrees_is_an_angle_a_body_turns_with() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("`w` is not an angle"), "{e:#?}");
 }
+
+/// The angle of a term whose length is an angle expression (`l` in `(2 * psi) @ l`) is an angle
+/// only by that term, as the angle of a bare swapped term is: a coordinate, a sum, a `let` and
+/// another term that use it as the length it is are not refused as well.
+#[test]
+fn the_angle_of_a_term_of_an_angle_expression_is_a_length_elsewhere() {
+    let head = "params r, l, e; input phi; unknowns psi, x;
+                loop c: r @ phi == (x, e) + (2 * psi) @ l; point mid = r @ phi + 0.5 * l @ psi;";
+    for body in ["point p = (x, 2 * l);", "point p = (x, l);", "let k = x + l; point p = (k, 0);", "eq q: x == l + e;"]
+    {
+        let e = errors(&format!("pub struct S {{ {head} {body} }}"));
+        let angles: Vec<&String> = e.iter().filter(|m| m.contains("is an angle")).collect();
+        assert_eq!(angles.len(), 1, "{body}: {e:#?}");
+        assert!(angles[0].starts_with("`2 * psi` is an angle"), "{body}: {e:#?}");
+        assert!(angles[0].ends_with("or if the two are swapped, write `l @ (2 * psi)`"), "{body}: {e:#?}");
+    }
+}

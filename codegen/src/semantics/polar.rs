@@ -7,8 +7,9 @@
 //! is judged by its kind, as a coordinate is (below): `(2 * phi) @ th` and
 //! `norm((phi, psi)) @ th` are refused, with a length to write and, unless `th` is an angle
 //! too, the swap. The angle of a term found swapped (`l` in `psi @ l`) is an angle only by
-//! that mistake: it is the length it is everywhere else, so one mistake is told once. A term
-//! whose length is written in degrees says nothing of its angle either.
+//! that mistake: it is the length it is everywhere else, so one mistake is told once; so is
+//! the angle of a term whose length is an expression of an angle (`l` in `(2 * psi) @ l`). A
+//! term whose length is written in degrees says nothing of its angle either.
 //!
 //! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
 //! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
@@ -199,11 +200,16 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
         }
         // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
         // angle of `@` is an angle by that term alone): both ways are told, where both could be.
+        // Either way the angle is an angle only by this mistake (`l` in `(2 * psi) @ l`), as a
+        // swapped term's is: a length for every later check, so that one mistake is told once.
         let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).copied().collect();
         let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &avoided);
         let fix = match angle_of(lw, angles, t, &arguments) {
             AngleOf::Angle => both_angles(t),
-            AngleOf::Length(_) => format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor),
+            AngleOf::Length(leaves) => {
+                angles.swapped.extend(leaves);
+                format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor)
+            }
         };
         found.push((i, length_error(t, &why, &fix)));
     }
