@@ -1236,3 +1236,31 @@ fn the_angle_of_a_term_of_an_angle_expression_is_a_length_elsewhere() {
         assert!(angles[0].ends_with("or if the two are swapped, write `l @ (2 * psi)`"), "{body}: {e:#?}");
     }
 }
+
+/// `psi @ (phi + e)`, its angle an angle `phi` beside a name `e` of no known kind, was told to
+/// swap the two: `(phi + e) @ psi` puts the angle `phi` into a length. Whatever `e` is, the
+/// angle of `@` holds an angle, so the length is told to be a length, and `e` that it makes a
+/// mix if it is a length. A product (`r * phi`, a rolled arc) is a length: the swap stands.
+#[test]
+fn an_angle_beside_a_name_of_no_known_kind_is_not_swapped_into_a_length() {
+    for (coordinate, length) in [("0", "psi"), ("e", "psi"), ("0", "(2 * psi)")] {
+        let e = errors(&format!(
+            "pub struct S {{ params r, l, e; input phi; unknowns psi, x;
+             loop c: r @ phi == (x, {coordinate}) + l @ psi; point p = (x, 0) + {length} @ (phi + e); }}"
+        ));
+        assert_eq!(e.len(), 1, "{length}, {coordinate}: {e:#?}");
+        assert!(!e[0].contains("swapped"), "{e:#?}");
+        let fix = format!(
+            ": `phi + e` holds `phi`, an angle, so swapping the two cannot help; write a length there, such as \
+             `r * {length}` for the arc a radius `r` rolls, and if `e` is a length, `phi + e` mixes an angle and a \
+             length: write an angle for it"
+        );
+        assert!(e[0].ends_with(&fix), "{e:#?}");
+    }
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi, x;
+         loop c: r @ phi == (x, 0) + l @ psi; point p = (x, 0) + psi @ (r * phi); }",
+    );
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].ends_with("the two are swapped; write `(r * phi) @ psi`"), "{e:#?}");
+}

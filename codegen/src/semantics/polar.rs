@@ -9,7 +9,10 @@
 //! too, the swap. The angle of a term found swapped (`l` in `psi @ l`) is an angle only by
 //! that mistake: it is the length it is everywhere else, so one mistake is told once; so is
 //! the angle of a term whose length is an expression of an angle (`l` in `(2 * psi) @ l`). A
-//! term whose length is written in degrees says nothing of its angle either.
+//! term whose length is written in degrees says nothing of its angle either. An angle of `@`
+//! that holds an angle offset by names of no known kind (`psi @ (phi + e)`) is an angle if they
+//! are angles, a mix of an angle and a length if not, a length in neither case: no swap is
+//! told, but a length to write and, if they are lengths, an angle for them.
 //!
 //! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
 //! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
@@ -184,6 +187,7 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
                 arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, &angles.roots, &suspects));
             match angle_of(lw, angles, t, arguments) {
                 AngleOf::Angle => both_angles(t),
+                AngleOf::Mixed { angle, others } => mixed(lw, angles, t, angle, others),
                 AngleOf::Length(leaves) => {
                     angles.swapped.extend(leaves);
                     swap(t)
@@ -206,6 +210,7 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
         let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &avoided);
         let fix = match angle_of(lw, angles, t, &arguments) {
             AngleOf::Angle => both_angles(t),
+            AngleOf::Mixed { angle, others } => mixed(lw, angles, t, angle, others),
             AngleOf::Length(leaves) => {
                 angles.swapped.extend(leaves);
                 format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor)
@@ -222,6 +227,10 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
 enum AngleOf {
     /// An angle by the rest of the mechanism: swapping cannot help.
     Angle,
+    /// An `angle` by the rest of the mechanism offset by `others`, of no known kind
+    /// (`phi + e`): an angle if they are angles, a mix of an angle and a length if not, and a
+    /// length in neither case, so swapping cannot help.
+    Mixed { angle: Leaf, others: Vec<Leaf> },
     /// No angle but by this term: the two are swapped, and these leaves of it are lengths.
     Length(Vec<Leaf>),
 }
@@ -238,12 +247,37 @@ fn angle_of(lw: &Lowerer, angles: &Angles, t: &NamedLength, arguments: &[NodeId]
     if dims::is_angle(g, t.angle_node, &of) {
         return AngleOf::Angle;
     }
+    // An angle that is none only for leaves of no known kind, and would be one were they
+    // angles, is offset by them (`phi + e`), as it is not in a product (`r * phi`, an arc).
+    let first = leaves.iter().copied().find(|l| apart.contains(l));
+    if let Some(angle) = first
+        && dims::is_angle(g, t.angle_node, &|_| Dim::Angle)
+    {
+        let others = leaves.into_iter().filter(|l| !apart.contains(l)).collect();
+        return AngleOf::Mixed { angle, others };
+    }
     AngleOf::Length(leaves.into_iter().filter(|l| !apart.contains(l)).collect())
 }
 
 /// The fix for the term `t` whose angle is an angle too: a length where the length belongs.
 fn both_angles(t: &NamedLength) -> String {
     format!("`{}` is an angle too, so swapping the two cannot help; {}", bare_angle(t), arc(t))
+}
+
+/// The fix for the term `t` whose angle holds `angle`, an angle, offset by `others` of no known
+/// kind (`phi + e`): a length where the length belongs, and an angle for the others if they are
+/// lengths. They are angles only by this term, as a swapped term's angle is: lengths elsewhere.
+fn mixed(lw: &Lowerer, angles: &mut Angles, t: &NamedLength, angle: Leaf, others: Vec<Leaf>) -> String {
+    let name = |l: Leaf| format!("`{}`", leaf_name(lw, l).unwrap_or_default());
+    let (shown, angle) = (bare_angle(t), name(angle));
+    let (names, n) = (others.iter().map(|&l| name(l)).collect::<Vec<_>>().join(" or "), others.len());
+    angles.swapped.extend(others);
+    let (verb, pronoun) = if n == 1 { ("is a length", "it") } else { ("are lengths", "them") };
+    format!(
+        "`{shown}` holds {angle}, an angle, so swapping the two cannot help; {}, and if {names} {verb}, `{shown}` \
+         mixes an angle and a length: write an angle for {pronoun}",
+        arc(t)
+    )
 }
 
 /// The angle of `t` as written, without the parentheses that make it one operand.
