@@ -1264,3 +1264,35 @@ fn an_angle_beside_a_name_of_no_known_kind_is_not_swapped_into_a_length() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].ends_with("the two are swapped; write `(r * phi) @ psi`"), "{e:#?}");
 }
+
+/// `l @ psi` and `psi @ l` both written bare, with nothing else to tell which name is the
+/// length: the first written was told "the two are swapped", whichever it was (the loop's
+/// `l @ psi` was told to become `psi @ l`). The first is now told that the two terms disagree,
+/// and how to write them alike either way. Where the rest of the mechanism tells (`0.5 * l @
+/// psi` turns by `psi`), the term that disagrees with it is told to swap, and only it: `l @ psi`
+/// was told that `psi` is an angle too, so it needed a length.
+#[test]
+fn two_terms_of_the_same_names_in_opposite_orders_are_one_error() {
+    for (first, second, [a, b]) in [("l @ psi", "psi @ l", ["l", "psi"]), ("psi @ l", "l @ psi", ["psi", "l"])] {
+        let tie = format!(
+            "take `{a}` and `{b}` in opposite orders, and nothing else in the mechanism tells which is the length: \
+             `@` takes `length @ angle`, so write the two terms alike, `{first}` if `{a}` is the length, `{second}` \
+             if `{b}` is"
+        );
+        let e = errors(&format!(
+            "pub struct S {{ params r, l, e; input phi; unknowns psi, x;
+             loop c: r @ phi == (x, e) + {first}; point p = (x, 0) + {second}; point q = (x, l + psi); }}"
+        ));
+        assert_eq!(e.len(), 1, "{first}: {e:#?}");
+        assert_eq!(e[0], format!("`{first}` and `{second}`, written after it, {tie}"), "{e:#?}");
+    }
+    for (first, second) in [("l @ psi", "psi @ l"), ("psi @ l", "l @ psi")] {
+        let e = errors(&format!(
+            "pub struct S {{ params r, l, e; input phi; unknowns psi, x;
+             loop c: r @ phi == (x, e) + {first}; point p = (x, 0) + {second}; point m = 0.5 * l @ psi; }}"
+        ));
+        assert_eq!(e.len(), 1, "{first}: {e:#?}");
+        assert!(e[0].starts_with("`psi` is an angle"), "{first}: {e:#?}");
+        assert!(e[0].ends_with("the two are swapped; write `l @ psi`"), "{first}: {e:#?}");
+    }
+}

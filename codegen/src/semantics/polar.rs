@@ -12,7 +12,11 @@
 //! term whose length is written in degrees says nothing of its angle either. An angle of `@`
 //! that holds an angle offset by names of no known kind (`psi @ (phi + e)`) is an angle if they
 //! are angles, a mix of an angle and a length if not, a length in neither case: no swap is
-//! told, but a length to write and, if they are lengths, an angle for them.
+//! told, but a length to write and, if they are lengths, an angle for them. A length that is
+//! an angle only by such terms (`l` by `psi @ l`) where its own angle is one (`l @ psi`, with
+//! `0.5 * l @ psi` elsewhere) is right as written: the other term is told, and only it. Two
+//! terms that take two names in opposite orders (`l @ psi`, `psi @ l`), with nothing else to
+//! tell which is the length, are one error at the first, which says so.
 //!
 //! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
 //! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
@@ -38,7 +42,7 @@
 
 use super::dynamics::{leaf_name, sets_to_angle};
 use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair};
-use crate::graph::dag::{Graph, Leaf, NodeId};
+use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
 use std::collections::{HashMap, HashSet};
@@ -155,8 +159,9 @@ pub(super) fn note_places(lw: &Lowerer, angles: &mut Angles) {
 /// angle by the rest of the mechanism (in `psi @ phi`, with `phi` an angle elsewhere, swapping
 /// cannot help). Names and degrees first: the angle of a term they find swapped (`l` in
 /// `psi @ l`) is an angle only by that mistake, and makes nothing else one (`0.5 * l @ psi`,
-/// `(x, 2 * l)` and `x + l` are told nothing more). Run before the checks of coordinates and
-/// sums, which take those angles for lengths.
+/// `(x, 2 * l)` and `x + l` are told nothing more). A term is told only where the rest of the
+/// mechanism, or nothing, tells which of its names is the length (see [`Apart`]). Run before
+/// the checks of coordinates and sums, which take those angles for lengths.
 pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
     let mut found: Vec<(usize, syn::Error)> = Vec::new();
     let direct = |t: &&NamedLength| t.leaf.is_some() || t.degrees;
@@ -171,7 +176,12 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
     let g = &lw.graph;
     // Found at the first term with an angle to judge: most mechanisms have none.
     let mut arguments = None;
+    // The terms told with another one, as the other order of its two names.
+    let mut told: HashSet<usize> = HashSet::new();
     for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| direct(t)) {
+        if told.contains(&i) {
+            continue;
+        }
         let why = match t.leaf {
             Some(leaf) if !t.degrees => angles.why(&lw.graph, leaf, &t.length),
             _ => why_an_angle(true, false, &t.length),
@@ -185,6 +195,20 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
         } else {
             let arguments =
                 arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, &angles.roots, &suspects));
+            match length_apart(lw, angles, i, t, arguments) {
+                Apart::Angle => {}
+                Apart::Right(leaf) => {
+                    angles.swapped.insert(leaf);
+                    angles.lengths.insert(leaf);
+                    continue;
+                }
+                Apart::Tie { mirror, leaves } => {
+                    angles.swapped.extend(leaves);
+                    told.insert(mirror);
+                    found.extend(lw.named_lengths.get(mirror).map(|m| (i, tie(t, m, mirror > i))));
+                    continue;
+                }
+            }
             match angle_of(lw, angles, t, arguments) {
                 AngleOf::Angle => both_angles(t),
                 AngleOf::Mixed { angle, others } => mixed(lw, angles, t, angle, others),
@@ -220,6 +244,49 @@ pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
     }
     found.sort_by_key(|(i, _)| *i);
     found.into_iter().map(|(_, e)| e).collect()
+}
+
+/// What the length of a polar term `length @ angle` of two names, the length an angle, is by
+/// the rest of the mechanism (the terms whose length is an angle set aside).
+enum Apart {
+    /// An angle (or not a name of one): the term is judged by its angle.
+    Angle,
+    /// An angle only by the terms set aside, whose own length is an angle, where the term's
+    /// angle is an angle: the term is right as written, and the other terms are to be swapped.
+    Right(Leaf),
+    /// Neither name an angle but by the terms set aside, and the term `mirror` takes the two in
+    /// the other order (`l @ psi` and `psi @ l`): nothing tells which is the length.
+    Tie { mirror: usize, leaves: [Leaf; 2] },
+}
+
+/// What the length of the term `t`, the `i`th, is by the rest of the mechanism (`arguments`:
+/// the trigonometric arguments found without the terms whose length is an angle).
+fn length_apart(lw: &Lowerer, angles: &Angles, i: usize, t: &NamedLength, arguments: &[NodeId]) -> Apart {
+    let g = &lw.graph;
+    let Some(length) = t.leaf.filter(|&l| !t.degrees && !angles.apart(g, l, arguments)) else { return Apart::Angle };
+    if matches!(angle_of(lw, angles, t, arguments), AngleOf::Angle) {
+        return Apart::Right(length);
+    }
+    let Op::Leaf(angle) = g.op(t.angle_node) else { return Apart::Angle };
+    let other_order = |m: &NamedLength| !m.degrees && m.leaf == Some(angle) && g.op(m.angle_node) == Op::Leaf(length);
+    let mirror = lw.named_lengths.iter().enumerate().position(|(j, m)| j != i && other_order(m));
+    match mirror {
+        Some(mirror) => Apart::Tie { mirror, leaves: [length, angle] },
+        None => Apart::Angle,
+    }
+}
+
+/// The error for the term `t` whose two names the term `m`, written `after` it or before,
+/// takes in the other order, with nothing else to tell which is the length.
+fn tie(t: &NamedLength, m: &NamedLength, after: bool) -> syn::Error {
+    let (this, other) = (format!("{} @ {}", t.length, t.angle), format!("{} @ {}", m.length, m.angle));
+    let when = if after { "after" } else { "before" };
+    t.term.error(format!(
+        "`{this}` and `{other}`, written {when} it, take `{}` and `{}` in opposite orders, and nothing else in the \
+         mechanism tells which is the length: `@` takes `length @ angle`, so write the two terms alike, `{this}` \
+         if `{}` is the length, `{other}` if `{}` is",
+        t.length, t.angle, t.length, m.length
+    ))
 }
 
 /// What the angle (not a constant) of a polar term whose length is an angle is, by the rest
