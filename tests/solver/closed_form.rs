@@ -8,7 +8,7 @@
 //! agree to 1e-13, analogs to 1e-11 relative. Where the closed form has no root, the error is
 //! the same typed `NoAssembly` as Newton's.
 
-use crate::support::{newton_to_rounding, tol};
+use crate::support::{assert_singular_block_0, newton_to_rounding, tol};
 use kinloop::{Error, Kin, Mechanism, NewtonConfig, QuantityKind, Sweep, SweepConfig};
 use kinloop_fixtures::gear_lever::{GEAR_LEVER_TEXT, GearLever};
 use kinloop_fixtures::roller_edger::{ROLLER_EDGER_TEXT, RollerEdger};
@@ -610,12 +610,7 @@ fn a_newton_coupler_shorter_than_the_tolerance_is_not_carried_past_every_turn() 
                 m.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q),
             ];
             for r in results {
-                match r {
-                    Err(e @ Error::Singular { .. }) => {
-                        assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
-                    }
-                    other => panic!("{at}: {other:?}"),
-                }
+                assert_singular_block_0(r, &at);
             }
         }
     }
@@ -660,12 +655,7 @@ fn a_newton_coupler_that_every_angle_closes_is_singular_where_it_moved_turns_awa
                 m.kinematics_flat(&[phi], &guess, &cfg).map(|k| k.q),
             ];
             for r in results {
-                match r {
-                    Err(e @ Error::Singular { .. }) => {
-                        assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
-                    }
-                    other => panic!("{at}: {other:?}"),
-                }
+                assert_singular_block_0(r, &at);
             }
         }
     }
@@ -750,12 +740,7 @@ fn a_rocker_shorter_than_the_rounding_of_its_loop_is_not_determined() {
                     m.position_flat(&[phi], &guess, &cfg).map(|(q, _)| q),
                 ];
                 for r in results {
-                    match r {
-                        Err(e @ Error::Singular { .. }) => {
-                            assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}");
-                        }
-                        other => panic!("{at}: {other:?}"),
-                    }
+                    assert_singular_block_0(r, &at);
                 }
             }
         }

@@ -6,7 +6,8 @@
 //! coupler of `1e-20` reports it. Each case's closing is computed here in plain f64, over 64
 //! angles of the short link, independent of the solver.
 
-use kinloop::{Error, Mechanism, NewtonConfig};
+use crate::support::assert_singular_block_0;
+use kinloop::{Mechanism, NewtonConfig};
 use std::f64::consts::{PI, TAU};
 
 with_newton_twin! {
@@ -56,16 +57,6 @@ with_newton_twin! {
 fn worst_miss(p: [f64; 2], short: f64, q: [f64; 2], size: f64, samples: usize) -> f64 {
     let miss = |t: f64| (p[0] + short * t.cos() - q[0]).hypot(p[1] + short * t.sin() - q[1]);
     (0..samples).map(|k| miss(TAU * k as f64 / samples as f64)).fold(0.0, f64::max) / size
-}
-
-/// Panics unless `r` is the singular position of block 0.
-fn assert_singular_block_0<T: std::fmt::Debug>(r: Result<T, Error>, at: &str) {
-    match r {
-        Err(e @ Error::Singular { .. }) => {
-            assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}: {e}");
-        }
-        other => panic!("{at}: {other:?}"),
-    }
 }
 
 /// The four-bar of unit crank, rocker and frame with a coupler of `1e-20` or `1e-300` of them,

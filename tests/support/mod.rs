@@ -325,3 +325,13 @@ pub fn newton_to_default_step() -> NewtonConfig {
 pub fn newton_to_fine_step() -> NewtonConfig {
     NewtonConfig::default().with_residual_tol(1e-300).with_step_tol(1e-15)
 }
+
+/// Panics unless `r` is the singular position of block 0 (`at` says where, in the message).
+pub fn assert_singular_block_0<T: std::fmt::Debug>(r: Result<T, kinloop::Error>, at: &str) {
+    match r {
+        Err(e @ kinloop::Error::Singular { .. }) => {
+            assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|(k, _)| *k), Some(0), "{at}: {e}");
+        }
+        other => panic!("{at}: {other:?}"),
+    }
+}
