@@ -135,3 +135,64 @@ fn a_second_link_below_the_rounding_is_singular_folded_and_rescaled() {
         }
     }
 }
+
+/// The block and the kind of a failure (`None` for a solution): what a verdict at one size
+/// must be at every other.
+fn verdict<T>(r: &Result<T, Error>) -> Option<(usize, std::mem::Discriminant<Error>)> {
+    let e = r.as_ref().err()?;
+    Some((e.location().and_then(|l| l.block.as_ref()).map_or(usize::MAX, |(k, _)| *k), std::mem::discriminant(e)))
+}
+
+/// The four-bar declared coupler first (the fixtures' `FourBar`) and its Newton twin beyond the
+/// closed forms' sizes (`1e±160`, `1e±200`), where a failed step is solved again by Newton over
+/// the whole system in the mechanism's own magnitudes: a rocker of `1e-20` of the others at the
+/// input where the coupler's end reaches the rocker's pivot (frame 2 at `0`, exactly; frame 1 at
+/// `fl(π/3)`, within `1e-16`), and a coupler of `1e-20` on the crank pin that the rocker
+/// reaches (frame 1 at `fl(π/3)`, and `π/3 + 1e-12`, `8.7e-13` beyond the rocker's reach). At
+/// size 1 every angle of the short link closes the loop within the tolerance of its size
+/// (`4 eps` where the pin is on the pivot; plain f64, 64 angles) and the closed form reports
+/// the singular position of block 0, for the analogs and the positions alone; every size gives
+/// the verdict of size 1, for the Newton twin too. The closed form's analogs at `1e±160` and
+/// `1e±200` with the rocker on frame 2 were the rocker at its guess `1.5` rad (a value the data
+/// do not determine) and its velocity analog, where size 1 is singular.
+#[test]
+fn a_link_below_the_rounding_is_singular_beyond_the_closed_forms_sizes() {
+    let cfg = NewtonConfig::default();
+    // (crank, coupler, rocker, frame, input) at size 1, and the worst miss allowed.
+    let cases = [
+        (1.0, 1.0, 1e-20, 2.0, 0.0, 4.0 * f64::EPSILON),
+        (1.0, 1.0, 1e-20, 1.0, PI / 3.0, 4.0 * f64::EPSILON),
+        (1.0, 1e-20, 1.0, 1.0, PI / 3.0, 4.0 * f64::EPSILON),
+        (1.0, 1e-20, 1.0, 1.0, PI / 3.0 + 1e-12, cfg.residual_tol),
+    ];
+    let guess = [0.5, 1.5];
+    for (a, b, c, d, phi, within) in cases {
+        let pin = [a * phi.cos(), a * phi.sin()];
+        let worst = if c < b {
+            let beta = (-pin[1]).atan2(d - pin[0]);
+            worst_miss([d, 0.0], c, [pin[0] + b * beta.cos(), pin[1] + b * beta.sin()], a + b + c + d, 64)
+        } else {
+            let gamma = pin[1].atan2(pin[0] - d);
+            worst_miss(pin, b, [d + c * gamma.cos(), c * gamma.sin()], a + b + c + d, 64)
+        };
+        let case = format!("links {a}, {b}, {c}, {d} at {phi}");
+        assert!(worst <= within, "{case}: every short-link angle misses by {worst:e} at most");
+        let solves = |s: f64| {
+            let [a, b, c, d] = [a, b, c, d].map(|l| l * s);
+            let (closed, newton) = (BetaFirst { a, b, c, d }, BetaFirstNewton { a, b, c, d });
+            [
+                verdict(&closed.kinematics_flat(&[phi], &guess, &cfg)),
+                verdict(&closed.position_flat(&[phi], &guess, &cfg)),
+                verdict(&newton.kinematics_flat(&[phi], &guess, &cfg)),
+                verdict(&newton.position_flat(&[phi], &guess, &cfg)),
+            ]
+        };
+        let closed = BetaFirst { a, b, c, d };
+        assert_singular_block_0(closed.kinematics_flat(&[phi], &guess, &cfg), &format!("{case}: analogs"));
+        assert_singular_block_0(closed.position_flat(&[phi], &guess, &cfg), &format!("{case}: positions"));
+        let at_1 = solves(1.0);
+        for scale in [1e160, 1e-160, 1e200, 1e-200] {
+            assert_eq!(solves(scale), at_1, "{case}, scale {scale:e}: closed form's analogs, positions; Newton's");
+        }
+    }
+}

@@ -70,9 +70,11 @@ use core::cell::Cell;
 
 mod modes;
 mod system;
+mod undetermined;
 use modes::keep_modes;
 pub use system::{AtLimit, Block};
 use system::{System, blank_evaluation, scaled_residual};
+use undetermined::undetermined_angle;
 
 /// The sizes (largest magnitude of an equation's terms: the sum of a loop's link lengths) at
 /// which every closed form computes exactly: `2^-480 .. 2^480`, about `1e-144 .. 1e144`. Their
@@ -476,6 +478,10 @@ fn solve_all<const N: usize>(
         }
         Err(fail) => return Err(fail),
     };
+    // An angle the equations do not see has no root to keep a mode of: the block is singular.
+    if let Some(fail) = undetermined_angle(&solved, system, blocks, &mut eval) {
+        return Err(fail);
+    }
     let solved = if blocks.iter().any(|b| b.closed_form) {
         keep_modes(solved, &z0, system, blocks, &mags, &mut eval)?
     } else {
