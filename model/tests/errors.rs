@@ -849,30 +849,37 @@ fn a_second_link_below_the_rounding_is_singular_read_and_compiled_alike() {
     assert_eq!(model.explain(&[1.0], &[0.1, 3.0], &cfg, step), solved);
 }
 
-/// The fixtures' four-bar with a rocker of `1e-20` of its unit crank and coupler, on a frame of
-/// 2 at an input of 0 (the coupler's end exactly on the rocker's pivot: every rocker angle
-/// closes the loop within `4 eps` of its size, `tests/solver/degenerate_dyad_links.rs` computes
-/// it in plain f64), beyond the closed forms' sizes (`1e±160`, `1e±200`), where a failed step
-/// is solved again by Newton over the whole system: the singular position of block 0 as at size
-/// 1, for the analogs and for the positions alone, read and compiled alike. The analogs were
-/// the rocker at its guess (`1.5` rad, a value the data do not determine), in both.
+/// The fixtures' four-bar with a link below the rounding of its loop, beyond the closed forms'
+/// sizes (`1e±160`, `1e±200`), where a failed step is solved again by Newton over the whole
+/// system: a rocker of `1e-20` of its unit crank and coupler on a frame of 2 at an input of 0
+/// (the coupler's end exactly on the rocker's pivot), and a coupler of `1e-20` on a unit
+/// crank, rocker and frame at `fl(π/3)` (the crank pin on the rocker's reach). Every angle of
+/// the short link closes the loop within `4 eps` of its size
+/// (`tests/solver/degenerate_dyad_links.rs` computes it in plain f64): the singular position of
+/// block 0 as at size 1, for the analogs and for the positions alone, read and compiled alike.
+/// The rocker's analogs were the rocker at its guess (`1.5` rad, a value the data do not
+/// determine), in both.
 #[test]
-fn a_rocker_below_the_rounding_of_its_loop_is_singular_at_extreme_sizes_read_and_compiled_alike() {
+fn a_link_below_the_rounding_of_its_loop_is_singular_at_extreme_sizes_read_and_compiled_alike() {
     let cfg = NewtonConfig::default();
     let guess = [0.5, 1.5];
-    for k in [1e160, 1e-160, 1e200, 1e-200] {
-        let (a, b, c, d) = (k, k, 1e-20 * k, 2.0 * k);
-        let compiled = fx::FourBar { a, b, c, d };
-        let solved = compiled.kinematics_flat(&[0.0], &guess, &cfg).map(|_| ()).unwrap_err();
-        assert!(matches!(solved, Error::Singular { .. }), "size {k:e}: {solved:?}");
-        assert_eq!(solved.location().and_then(|l| l.block.as_ref()).map(|b| b.0), Some(0), "size {k:e}");
-        let mut model = read(fx::FOUR_BAR_TEXT);
-        set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
-        let step = model.kinematics(&[0.0], &guess, &cfg).map(|_| ()).unwrap_err();
-        assert_eq!(model.explain(&[0.0], &guess, &cfg, step), solved, "size {k:e}");
-        let positioned = compiled.position_flat(&[0.0], &guess, &cfg).map(|_| ()).unwrap_err();
-        assert!(matches!(positioned, Error::Singular { .. }), "size {k:e}: {positioned:?}");
-        let step = model.positions(&[0.0], &guess, &cfg).map(|_| ()).unwrap_err();
-        assert_eq!(model.explain(&[0.0], &guess, &cfg, step), positioned, "size {k:e}");
+    let cases = [([1.0, 1.0, 1e-20, 2.0], 0.0), ([1.0, 1e-20, 1.0, 1.0], std::f64::consts::PI / 3.0)];
+    for (links, phi) in cases {
+        for k in [1e160, 1e-160, 1e200, 1e-200] {
+            let at = format!("links {links:?} at {phi}, size {k:e}");
+            let [a, b, c, d] = links.map(|l| l * k);
+            let compiled = fx::FourBar { a, b, c, d };
+            let mut model = read(fx::FOUR_BAR_TEXT);
+            set(&mut model, &[("a", a), ("b", b), ("c", c), ("d", d)]);
+            let solved = compiled.kinematics_flat(&[phi], &guess, &cfg).map(|_| ()).unwrap_err();
+            assert!(matches!(solved, Error::Singular { .. }), "{at}: {solved:?}");
+            assert_eq!(solved.location().and_then(|l| l.block.as_ref()).map(|b| b.0), Some(0), "{at}");
+            let step = model.kinematics(&[phi], &guess, &cfg).map(|_| ()).unwrap_err();
+            assert_eq!(model.explain(&[phi], &guess, &cfg, step), solved, "{at}");
+            let positioned = compiled.position_flat(&[phi], &guess, &cfg).map(|_| ()).unwrap_err();
+            assert!(matches!(positioned, Error::Singular { .. }), "{at}: {positioned:?}");
+            let step = model.positions(&[phi], &guess, &cfg).map(|_| ()).unwrap_err();
+            assert_eq!(model.explain(&[phi], &guess, &cfg, step), positioned, "{at}");
+        }
     }
 }
