@@ -163,87 +163,158 @@ pub(super) fn note_places(lw: &Lowerer, angles: &mut Angles) {
 /// mechanism, or nothing, tells which of its names is the length (see [`Apart`]). Run before
 /// the checks of coordinates and sums, which take those angles for lengths.
 pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
-    let mut found: Vec<(usize, syn::Error)> = Vec::new();
-    let direct = |t: &&NamedLength| t.leaf.is_some() || t.degrees;
-    // The terms of names and degrees whose length is an angle say nothing of their angle: each
-    // is judged by the rest of the mechanism (in `th @ l` and `psi @ l`, `l` is a length).
+    let suspects = suspects(lw, angles);
+    let mut found = direct_terms(lw, angles, &suspects);
+    found.extend(expression_terms(lw, angles, &suspects));
+    // Each error is kept with its term's index, so that they read in the order written.
+    found.sort_by_key(|(i, _)| *i);
+    found.into_iter().map(|(_, e)| e).collect()
+}
+
+/// Whether the length of `t` is a bare name or written in degrees: such a term is judged by
+/// that name (or unit) alone, an expression by the kind of what it is made from.
+fn is_direct(t: &NamedLength) -> bool {
+    t.leaf.is_some() || t.degrees
+}
+
+/// The coordinates of the terms whose length is an angle by its name or its degrees. Such a
+/// term says nothing of its angle (in `th @ l` and `psi @ l`, `l` is a length), so they are
+/// set aside whenever the rest of the mechanism is asked what a term's names are.
+fn suspects(lw: &Lowerer, angles: &mut Angles) -> Vec<NodeId> {
     let mut suspects = angles.set_aside.clone();
-    for t in lw.named_lengths.iter().filter(direct) {
+    for t in lw.named_lengths.iter().filter(|t| is_direct(t)) {
         if t.leaf.is_some_and(|leaf| angles.why(&lw.graph, leaf, &t.length).is_some()) {
             suspects.extend(t.products);
         }
     }
-    let g = &lw.graph;
+    suspects
+}
+
+/// The verdict on one term whose length is a bare name or written in degrees.
+enum Direct {
+    /// Nothing to tell: its length is a length, or it is right as written and another term is
+    /// the one told.
+    Fine,
+    /// Its length is an angle: the error, with the fix.
+    Error(syn::Error),
+    /// It and the term `mirror` take the same two names in opposite orders: one error for both.
+    Tie { mirror: usize, error: syn::Error },
+}
+
+/// The errors for the terms whose length is a bare name or written in degrees, each with the
+/// index of its term. They are judged before the expressions: the angle of a term found
+/// swapped (`l` in `psi @ l`) is an angle only by that mistake, and makes nothing else one.
+fn direct_terms(lw: &Lowerer, angles: &mut Angles, suspects: &[NodeId]) -> Vec<(usize, syn::Error)> {
     // Found at the first term with an angle to judge: most mechanisms have none.
     let mut arguments = None;
     // The terms told with another one, as the other order of its two names.
     let mut told: HashSet<usize> = HashSet::new();
-    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| direct(t)) {
+    let mut found = Vec::new();
+    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| is_direct(t)) {
         if told.contains(&i) {
             continue;
         }
-        let why = match t.leaf {
-            Some(leaf) if !t.degrees => angles.why(&lw.graph, leaf, &t.length),
-            _ => why_an_angle(true, false, &t.length),
-        };
-        let Some(why) = why else {
-            angles.lengths.extend(t.leaf);
-            continue;
-        };
-        let fix = if t.constant_angle {
-            arc(t)
-        } else {
-            let arguments =
-                arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, &angles.roots, &suspects));
-            match length_apart(lw, angles, i, t, arguments) {
-                Apart::Angle => {}
-                Apart::Right(leaf) => {
-                    angles.swapped.insert(leaf);
-                    angles.lengths.insert(leaf);
-                    continue;
-                }
-                Apart::Tie { mirror, leaves } => {
-                    angles.swapped.extend(leaves);
-                    told.insert(mirror);
-                    found.extend(lw.named_lengths.get(mirror).map(|m| (i, tie(t, m, mirror > i))));
-                    continue;
-                }
+        match direct_verdict(lw, angles, (i, t), suspects, &mut arguments) {
+            Direct::Fine => {}
+            Direct::Error(e) => found.push((i, e)),
+            Direct::Tie { mirror, error } => {
+                told.insert(mirror);
+                found.push((i, error));
             }
-            match angle_of(lw, angles, t, arguments) {
-                AngleOf::Angle => both_angles(t),
-                AngleOf::Mixed { angle, others } => mixed(lw, angles, t, angle, others),
-                AngleOf::Length(leaves) => {
-                    angles.swapped.extend(leaves);
-                    swap(t)
-                }
-            }
-        };
-        found.push((i, length_error(t, &why, &fix)));
-    }
-    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| !direct(t)) {
-        let Some(why) = why_expression(lw, angles, t.node) else { continue };
-        if t.constant_angle {
-            found.push((i, length_error(t, &why, &arc(t))));
-            continue;
         }
-        // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
-        // angle of `@` is an angle by that term alone): both ways are told, where both could be.
-        // Either way the angle is an angle only by this mistake (`l` in `(2 * psi) @ l`), as a
-        // swapped term's is: a length for every later check, so that one mistake is told once.
-        let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).copied().collect();
-        let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &avoided);
-        let fix = match angle_of(lw, angles, t, &arguments) {
-            AngleOf::Angle => both_angles(t),
-            AngleOf::Mixed { angle, others } => mixed(lw, angles, t, angle, others),
-            AngleOf::Length(leaves) => {
-                angles.swapped.extend(leaves);
-                format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor)
-            }
-        };
-        found.push((i, length_error(t, &why, &fix)));
     }
-    found.sort_by_key(|(i, _)| *i);
-    found.into_iter().map(|(_, e)| e).collect()
+    found
+}
+
+/// The verdict on the `i`th term `t`, of a bare name or degrees. `arguments` holds the
+/// trigonometric arguments found without the `suspects`, computed here the first time a term
+/// needs them. A term found right or swapped marks the names it shows to be lengths.
+fn direct_verdict(
+    lw: &Lowerer,
+    angles: &mut Angles,
+    (i, t): (usize, &NamedLength),
+    suspects: &[NodeId],
+    arguments: &mut Option<Vec<NodeId>>,
+) -> Direct {
+    let Some(why) = why_direct(lw, angles, t) else {
+        angles.lengths.extend(t.leaf);
+        return Direct::Fine;
+    };
+    if t.constant_angle {
+        return Direct::Error(length_error(t, &why, &arc(t)));
+    }
+    let arguments =
+        arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(&lw.graph, &angles.roots, suspects));
+    match length_apart(lw, angles, i, t, arguments) {
+        Apart::Angle => {}
+        Apart::Right(leaf) => {
+            angles.swapped.insert(leaf);
+            angles.lengths.insert(leaf);
+            return Direct::Fine;
+        }
+        Apart::Tie { mirror, leaves } => {
+            angles.swapped.extend(leaves);
+            return Direct::Tie { mirror, error: tie(t, &lw.named_lengths[mirror], mirror > i) };
+        }
+    }
+    let fix = fix_by_angle(lw, angles, t, arguments, swap);
+    Direct::Error(length_error(t, &why, &fix))
+}
+
+/// Why the length of `t`, a bare name or written in degrees, is an angle; `None` if it is not.
+fn why_direct(lw: &Lowerer, angles: &mut Angles, t: &NamedLength) -> Option<String> {
+    match t.leaf {
+        Some(leaf) if !t.degrees => angles.why(&lw.graph, leaf, &t.length),
+        _ => why_an_angle(true, false, &t.length),
+    }
+}
+
+/// The errors for the terms whose length is an expression of an angle, each with the index of
+/// its term.
+fn expression_terms(lw: &Lowerer, angles: &mut Angles, suspects: &[NodeId]) -> Vec<(usize, syn::Error)> {
+    let expressions = lw.named_lengths.iter().enumerate().filter(|(_, t)| !is_direct(t));
+    expressions.filter_map(|(i, t)| Some((i, expression_verdict(lw, angles, t, suspects)?))).collect()
+}
+
+/// The error for the term `t` whose length is an expression, if its kind is an angle.
+fn expression_verdict(lw: &Lowerer, angles: &mut Angles, t: &NamedLength, suspects: &[NodeId]) -> Option<syn::Error> {
+    let why = why_expression(lw, angles, t.node)?;
+    if t.constant_angle {
+        return Some(length_error(t, &why, &arc(t)));
+    }
+    // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
+    // angle of `@` is an angle by that term alone): both ways are told, where both could be.
+    // Either way the angle is an angle only by this mistake (`l` in `(2 * psi) @ l`), as a
+    // swapped term's is: a length for every later check, so that one mistake is told once.
+    let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).copied().collect();
+    let arguments = multiples::trig_arguments_avoiding(&lw.graph, &angles.roots, &avoided);
+    Some(length_error(t, &why, &fix_by_angle(lw, angles, t, &arguments, arc_or_swap)))
+}
+
+/// The fix for the term `t`, whose length is an angle, by what its angle is apart from it
+/// (`arguments`: the trigonometric arguments found without it): `if_length` where the angle is
+/// no angle, whose leaves are then lengths written in the wrong place.
+fn fix_by_angle(
+    lw: &Lowerer,
+    angles: &mut Angles,
+    t: &NamedLength,
+    arguments: &[NodeId],
+    if_length: fn(&NamedLength) -> String,
+) -> String {
+    match angle_of(lw, angles, t, arguments) {
+        AngleOf::Angle => both_angles(t),
+        AngleOf::Mixed { angle, others } => mixed(lw, angles, t, angle, others),
+        AngleOf::Length(leaves) => {
+            angles.swapped.extend(leaves);
+            if_length(t)
+        }
+    }
+}
+
+/// The fix for the term `t` whose length is an expression of an angle and whose angle is no
+/// angle: a length, or the swap.
+fn arc_or_swap(t: &NamedLength) -> String {
+    format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor)
 }
 
 /// What the length of a polar term `length @ angle` of two names, the length an angle, is by
