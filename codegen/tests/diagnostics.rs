@@ -1296,3 +1296,31 @@ fn two_terms_of_the_same_names_in_opposite_orders_are_one_error() {
         assert!(e[0].ends_with("the two are swapped; write `l @ psi`"), "{first}: {e:#?}");
     }
 }
+
+/// Two terms whose lengths are expressions that take two names in opposite orders
+/// (`0.5 * l @ psi` and `(2 * psi) @ l`), with nothing else to tell which is the length: the
+/// first written was told its length is an angle, whichever it was. The first of the two now
+/// says that they disagree, naming both readings, in either order.
+#[test]
+fn expression_terms_of_two_names_in_opposite_orders_are_one_error() {
+    let (one, two) = ("0.5 * l @ psi", "(2 * psi) @ l");
+    {
+        for (first, second) in [(one, two), (two, one)] {
+            let e = errors(&format!(
+                "pub struct S {{ params r, l, e; input phi; unknowns psi, x;
+                 loop c: r @ phi == (x, e) + {first}; point p = (x, 0) + {second}; }}"
+            ));
+            assert_eq!(e.len(), 1, "{first}: {e:#?}");
+            let (a, b) = if first.ends_with("psi") { ("l", "psi") } else { ("psi", "l") };
+            // The length that is a product is shown as the one operand it is.
+            let shown = |term: &str| term.replace("0.5 * l @", "(0.5 * l) @");
+            let (first, second) = (shown(first), shown(second));
+            let tie = format!(
+                "`{first}` and `{second}`, written after it, take `{a}` and `{b}` in opposite orders, and nothing \
+                 else in the mechanism tells which is the length: `@` takes `length @ angle`, so write the two \
+                 terms alike, `{first}` if `{a}` is the length, `{second}` if `{b}` is"
+            );
+            assert_eq!(e[0], tie, "{e:#?}");
+        }
+    }
+}

@@ -16,7 +16,9 @@
 //! an angle only by such terms (`l` by `psi @ l`) where its own angle is one (`l @ psi`, with
 //! `0.5 * l @ psi` elsewhere) is right as written: the other term is told, and only it. Two
 //! terms that take two names in opposite orders (`l @ psi`, `psi @ l`), with nothing else to
-//! tell which is the length, are one error at the first, which says so.
+//! tell which is the length, are one error at the first, which says so; so are two terms whose
+//! lengths are expressions of the two (`0.5 * l @ psi`, `(2 * psi) @ l`), where neither name is
+//! an angle but by them, nor a length by a position or a sum beside one.
 //!
 //! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
 //! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
@@ -164,8 +166,10 @@ pub(super) fn note_places(lw: &Lowerer, angles: &mut Angles) {
 /// the checks of coordinates and sums, which take those angles for lengths.
 pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
     let suspects = suspects(lw, angles);
-    let mut found = direct_terms(lw, angles, &suspects);
-    found.extend(expression_terms(lw, angles, &suspects));
+    // The terms told with another one, as the other order of its two names.
+    let mut told: HashSet<usize> = HashSet::new();
+    let mut found = direct_terms(lw, angles, &suspects, &mut told);
+    found.extend(expression_terms(lw, angles, &suspects, &mut told));
     // Each error is kept with its term's index, so that they read in the order written.
     found.sort_by_key(|(i, _)| *i);
     found.into_iter().map(|(_, e)| e).collect()
@@ -197,33 +201,44 @@ enum Direct {
     Fine,
     /// Its length is an angle: the error, with the fix.
     Error(syn::Error),
-    /// It and the term `mirror` take the same two names in opposite orders: one error for both.
-    Tie { mirror: usize, error: syn::Error },
+    /// It and the term `mirror` take the same two names in opposite orders: one error for both,
+    /// told at the term `at`, the first of the two.
+    Tie { mirror: usize, at: usize, error: syn::Error },
 }
 
 /// The errors for the terms whose length is a bare name or written in degrees, each with the
 /// index of its term. They are judged before the expressions: the angle of a term found
 /// swapped (`l` in `psi @ l`) is an angle only by that mistake, and makes nothing else one.
-fn direct_terms(lw: &Lowerer, angles: &mut Angles, suspects: &[NodeId]) -> Vec<(usize, syn::Error)> {
+fn direct_terms(
+    lw: &Lowerer,
+    angles: &mut Angles,
+    suspects: &[NodeId],
+    told: &mut HashSet<usize>,
+) -> Vec<(usize, syn::Error)> {
     // Found at the first term with an angle to judge: most mechanisms have none.
     let mut arguments = None;
-    // The terms told with another one, as the other order of its two names.
-    let mut told: HashSet<usize> = HashSet::new();
     let mut found = Vec::new();
     for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| is_direct(t)) {
         if told.contains(&i) {
             continue;
         }
-        match direct_verdict(lw, angles, (i, t), suspects, &mut arguments) {
-            Direct::Fine => {}
-            Direct::Error(e) => found.push((i, e)),
-            Direct::Tie { mirror, error } => {
-                told.insert(mirror);
-                found.push((i, error));
-            }
-        }
+        let verdict = direct_verdict(lw, angles, (i, t), suspects, &mut arguments);
+        found.extend(record(i, verdict, told));
     }
     found
+}
+
+/// The error of the `i`th term's `verdict`, with the index of the term it is told at; the
+/// other term of a tie is noted as `told`, so that it is not judged again.
+fn record(i: usize, verdict: Direct, told: &mut HashSet<usize>) -> Option<(usize, syn::Error)> {
+    match verdict {
+        Direct::Fine => None,
+        Direct::Error(e) => Some((i, e)),
+        Direct::Tie { mirror, at, error } => {
+            told.insert(mirror);
+            Some((at, error))
+        }
+    }
 }
 
 /// The verdict on the `i`th term `t`, of a bare name or degrees. `arguments` holds the
@@ -254,7 +269,8 @@ fn direct_verdict(
         }
         Apart::Tie { mirror, leaves } => {
             angles.swapped.extend(leaves);
-            return Direct::Tie { mirror, error: tie(t, &lw.named_lengths[mirror], mirror > i) };
+            let names = [t.length.as_str(), t.angle.as_str()];
+            return Direct::Tie { mirror, at: i, error: tie(t, &lw.named_lengths[mirror], mirror > i, names) };
         }
     }
     let fix = fix_by_angle(lw, angles, t, arguments, swap);
@@ -271,16 +287,31 @@ fn why_direct(lw: &Lowerer, angles: &mut Angles, t: &NamedLength) -> Option<Stri
 
 /// The errors for the terms whose length is an expression of an angle, each with the index of
 /// its term.
-fn expression_terms(lw: &Lowerer, angles: &mut Angles, suspects: &[NodeId]) -> Vec<(usize, syn::Error)> {
-    let expressions = lw.named_lengths.iter().enumerate().filter(|(_, t)| !is_direct(t));
-    expressions.filter_map(|(i, t)| Some((i, expression_verdict(lw, angles, t, suspects)?))).collect()
+fn expression_terms(
+    lw: &Lowerer,
+    angles: &mut Angles,
+    suspects: &[NodeId],
+    told: &mut HashSet<usize>,
+) -> Vec<(usize, syn::Error)> {
+    let mut found = Vec::new();
+    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| !is_direct(t)) {
+        if !told.contains(&i) {
+            let verdict = expression_verdict(lw, angles, (i, t), suspects);
+            found.extend(record(i, verdict, told));
+        }
+    }
+    found
 }
 
-/// The error for the term `t` whose length is an expression, if its kind is an angle.
-fn expression_verdict(lw: &Lowerer, angles: &mut Angles, t: &NamedLength, suspects: &[NodeId]) -> Option<syn::Error> {
-    let why = why_expression(lw, angles, t.node)?;
+/// The verdict on the `i`th term `t`, whose length is an expression: an error if its kind is
+/// an angle.
+fn expression_verdict(lw: &Lowerer, angles: &mut Angles, (i, t): (usize, &NamedLength), suspects: &[NodeId]) -> Direct {
+    let Some(why) = why_expression(lw, angles, t.node) else { return Direct::Fine };
     if t.constant_angle {
-        return Some(length_error(t, &why, &arc(t)));
+        return Direct::Error(length_error(t, &why, &arc(t)));
+    }
+    if let Some(tie) = expression_mirror(lw, angles, (i, t), suspects) {
+        return tie;
     }
     // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
     // angle of `@` is an angle by that term alone): both ways are told, where both could be.
@@ -288,7 +319,7 @@ fn expression_verdict(lw: &Lowerer, angles: &mut Angles, t: &NamedLength, suspec
     // swapped term's is: a length for every later check, so that one mistake is told once.
     let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).copied().collect();
     let arguments = multiples::trig_arguments_avoiding(&lw.graph, &angles.roots, &avoided);
-    Some(length_error(t, &why, &fix_by_angle(lw, angles, t, &arguments, arc_or_swap)))
+    Direct::Error(length_error(t, &why, &fix_by_angle(lw, angles, t, &arguments, arc_or_swap)))
 }
 
 /// The fix for the term `t`, whose length is an angle, by what its angle is apart from it
@@ -347,17 +378,88 @@ fn length_apart(lw: &Lowerer, angles: &Angles, i: usize, t: &NamedLength, argume
     }
 }
 
-/// The error for the term `t` whose two names the term `m`, written `after` it or before,
-/// takes in the other order, with nothing else to tell which is the length.
-fn tie(t: &NamedLength, m: &NamedLength, after: bool) -> syn::Error {
-    let (this, other) = (format!("{} @ {}", t.length, t.angle), format!("{} @ {}", m.length, m.angle));
+/// The error for the term `t` whose two names (`length`, the one it takes as the length, and
+/// `angle`) the term `m`, written `after` it or before, takes in the other order, with nothing
+/// else to tell which is the length.
+fn tie(t: &NamedLength, m: &NamedLength, after: bool, [length, angle]: [&str; 2]) -> syn::Error {
+    let (this, other) = (written(t), written(m));
     let when = if after { "after" } else { "before" };
     t.term.error(format!(
-        "`{this}` and `{other}`, written {when} it, take `{}` and `{}` in opposite orders, and nothing else in the \
+        "`{this}` and `{other}`, written {when} it, take `{length}` and `{angle}` in opposite orders, and nothing else in the \
          mechanism tells which is the length: `@` takes `length @ angle`, so write the two terms alike, `{this}` \
-         if `{}` is the length, `{other}` if `{}` is",
-        t.length, t.angle, t.length, m.length
+         if `{length}` is the length, `{other}` if `{angle}` is"
     ))
+}
+
+/// The term `t` as written: an expression length keeps the parentheses that make it one operand.
+fn written(t: &NamedLength) -> String {
+    let length = if is_direct(t) { &t.length } else { &t.factor };
+    format!("{length} @ {}", t.angle)
+}
+
+/// The tie of the `i`th term `t`, whose length is an expression, with another such term that
+/// takes its names crosswise (`0.5 * l @ psi` beside `(2 * psi) @ l`: a name of `t`'s length in
+/// the other's angle, one of its angle in the other's length), where nothing else in the
+/// mechanism tells which is the length: neither name is an angle with both terms (and the
+/// `suspects`) set aside, nor a length by a position or a sum beside a length. Either term
+/// makes the other's names angles, so the verdict of either alone would follow source order.
+/// The two names are lengths for every later check, as a swapped term's angle is. A bare term
+/// beside an expression (`psi @ l` beside `0.5 * l @ psi`) is left to [`length_apart`], which
+/// takes the expression's term for the rest of the mechanism.
+fn expression_mirror(
+    lw: &Lowerer,
+    angles: &mut Angles,
+    (i, t): (usize, &NamedLength),
+    suspects: &[NodeId],
+) -> Option<Direct> {
+    let g = &lw.graph;
+    if is_direct(t) || t.constant_angle {
+        return None;
+    }
+    let (lengths, angles_of_t) = (g.leaves_of(&[t.node]), g.leaves_of(&[t.angle_node]));
+    let crosswise = |m: &NamedLength| {
+        let (m_lengths, m_angles) = (g.leaves_of(&[m.node]), g.leaves_of(&[m.angle_node]));
+        let length = lengths.iter().copied().find(|l| m_angles.contains(l))?;
+        let angle = angles_of_t.iter().copied().find(|l| m_lengths.contains(l))?;
+        Some([length, angle])
+    };
+    let (j, m, [length, angle]) = lw.named_lengths.iter().enumerate().find_map(|(j, m)| {
+        let candidate = j != i && !is_direct(m) && !m.constant_angle;
+        Some((j, m, crosswise(m).filter(|_| candidate)?))
+    })?;
+    let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).chain(&m.products).copied().collect();
+    let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &avoided);
+    let tells = |l: Leaf| angles.apart(g, l, &arguments) || in_a_position(lw, l) || beside_a_length(lw, angles, l);
+    if tells(length) || tells(angle) {
+        return None;
+    }
+    angles.swapped.extend([length, angle]);
+    let name = |l: Leaf| leaf_name(lw, l).unwrap_or_default();
+    let (length, angle) = (name(length), name(angle));
+    let error = match j < i {
+        true => tie(m, t, true, [&angle, &length]),
+        false => tie(t, m, true, [&length, &angle]),
+    };
+    Some(Direct::Tie { mirror: j, at: i.min(j), error })
+}
+
+/// Whether `leaf` is in a sum, difference or `eq` whose other side holds a name placed as a
+/// length (`x + l`, `x == l + e`, `x` a coordinate of a position): a length by that sum.
+fn beside_a_length(lw: &Lowerer, angles: &Angles, leaf: Leaf) -> bool {
+    let holds = |n: NodeId, l: Leaf| lw.graph.leaves_of(&[n]).contains(&l);
+    let placed =
+        |n: NodeId| lw.graph.leaves_of(&[n]).iter().any(|l| *l != leaf && angles.placed_as_lengths.contains(l));
+    lw.scalar_pairs.iter().any(|p| {
+        let [(a, _), (b, _)] = p.sides;
+        (holds(a, leaf) && placed(b)) || (holds(b, leaf) && placed(a))
+    })
+}
+
+/// Whether `leaf` is written in a coordinate of a position (not a vector `let`, which may be
+/// no position): a length by its place.
+fn in_a_position(lw: &Lowerer, leaf: Leaf) -> bool {
+    let positions = lw.named_coordinates.iter().filter(|c| !matches!(c.place, Place::Let(_)));
+    positions.into_iter().any(|c| lw.graph.leaves_of(&[c.node]).contains(&leaf))
 }
 
 /// What the angle (not a constant) of a polar term whose length is an angle is, by the rest
