@@ -7,7 +7,7 @@
 //! angles of the short link, independent of the solver.
 
 use crate::support::assert_singular_block_0;
-use kinloop::{Mechanism, NewtonConfig};
+use kinloop::{Error, Mechanism, NewtonConfig};
 use std::f64::consts::{PI, TAU};
 
 with_newton_twin! {
