@@ -289,8 +289,9 @@
 //! Through JSON, serde_json reads every number back to the bit with its feature
 //! `float_roundtrip` (`serde_json = { version = "1", features = ["float_roundtrip"] }`);
 //! without it, its faster parser may read the last bit of some numbers differently. JSON has
-//! no NaN nor infinity: a state's, a vector's, a table's or a report's are written as the
-//! strings `"NaN"`, `"inf"` and `"-inf"` and read back as they were (`null` reads as NaN).
+//! no NaN nor infinity: a state's, a parameter set's or other generated struct's (alone as
+//! inside a state), a vector's, a table's or a report's are written as the strings `"NaN"`,
+//! `"inf"` and `"-inf"` and read back as they were (`null` reads as NaN).
 //! Configurations ([`SweepConfig`], [`NewtonConfig`], the optimisers) are built from their
 //! defaults with `with_*` methods: `SweepConfig::default().with_max_step(0.5)`.
 //!
@@ -424,14 +425,16 @@ pub use kinloop_runtime::paths::scan::*;
 pub mod __gen {
     pub use kinloop_runtime::generated::*;
 
-    // The `Serialize` and `Deserialize` derives every generated struct names: serde's with the
-    // feature `serde`, otherwise derives that implement nothing and accept the `serde`
+    // The `Serialize` and `Deserialize` derives every generated struct names: with the feature
+    // `serde`, kinloop's, which emit serde's impls with every number written and read as the
+    // crate's other numbers are (serde's own wrote a non-finite one as JSON's `null`, which does
+    // not read back); otherwise derives that implement nothing and accept the `serde`
     // attributes. The user's crate cannot test kinloop's features, so the expansion names these,
     // the same with and without the feature.
+    #[cfg(feature = "serde")]
+    pub use kinloop_macros::{FloatsDeserialize as Deserialize, FloatsSerialize as Serialize};
     #[cfg(not(feature = "serde"))]
     pub use kinloop_macros::{NoDeserialize as Deserialize, NoSerialize as Serialize};
-    #[cfg(feature = "serde")]
-    pub use kinloop_runtime::generated::serde::{Deserialize, Serialize};
 }
 
 /// Charts of sweep results as SVG (feature `plot`).

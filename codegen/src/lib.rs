@@ -37,6 +37,7 @@ pub mod graph;
 #[doc(hidden)]
 pub mod plan;
 pub(crate) mod semantics;
+pub(crate) mod serde_derive;
 pub(crate) mod structure;
 
 // What `analyze` returns is public: the checked model, the blocks and the warnings.
@@ -45,6 +46,10 @@ pub(crate) mod structure;
 #[doc(hidden)]
 pub use semantics::dynamics;
 pub use semantics::model;
+/// The serde derives of the structs `mechanism!` generates (kinloop's feature `serde`): serde's
+/// impls with every number written and read as kinloop writes and reads numbers.
+#[doc(hidden)]
+pub use serde_derive::{derive_deserialize, derive_serialize};
 pub use structure::{Block, diag};
 
 use front::declaration;

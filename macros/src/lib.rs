@@ -29,3 +29,22 @@ pub fn no_serialize(_item: TokenStream) -> TokenStream {
 pub fn no_deserialize(_item: TokenStream) -> TokenStream {
     TokenStream::new()
 }
+
+/// What a generated struct derives as `Serialize` with kinloop's feature `serde`: serde's
+/// `Serialize`, with every `f64` within written as kinloop writes numbers (a non-finite one as
+/// `"NaN"`, `"inf"` or `"-inf"` in JSON, not `null`), alone as inside a state (see
+/// `kinloop::__gen`).
+#[doc(hidden)]
+#[proc_macro_derive(FloatsSerialize, attributes(serde))]
+pub fn floats_serialize(item: TokenStream) -> TokenStream {
+    kinloop_codegen::derive_serialize(item.into()).into()
+}
+
+/// What a generated struct derives as `Deserialize` with kinloop's feature `serde`: serde's
+/// `Deserialize`, reading every `f64` within as kinloop reads numbers (a number, `"NaN"`,
+/// `"inf"`, `"-inf"`, or `null` as NaN; see `FloatsSerialize`).
+#[doc(hidden)]
+#[proc_macro_derive(FloatsDeserialize, attributes(serde))]
+pub fn floats_deserialize(item: TokenStream) -> TokenStream {
+    kinloop_codegen::derive_deserialize(item.into()).into()
+}

@@ -40,6 +40,11 @@ pub use std::borrow::Cow;
 /// constant, nothing allocated; the short name keeps the expansion's lines short).
 pub use std::borrow::Cow::Borrowed as Name;
 
+/// A format's serializer and deserializer that write and read every `f64` within a value as the
+/// crate's other numbers are (a non-finite one as `"NaN"`, `"inf"`, `"-inf"` in a
+/// human-readable format): what the serde impls of generated structs hand their fields to.
+#[cfg(feature = "serde")]
+pub use crate::floats_serde::within::{De as FloatsDe, Ser as FloatsSer};
 /// serde, for the derives of generated types (feature `serde`): users need no serde dependency.
 #[cfg(feature = "serde")]
 pub use serde;

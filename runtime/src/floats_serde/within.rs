@@ -7,7 +7,11 @@
 //! Serialize` alone, so `Vec2<T>` must serialize for every such `T` (`f64`, `[f64; N]`, a
 //! generated struct of the inputs, a user's own type) with nothing more known of it. A trait
 //! implemented for the element types would narrow that bound and break the generated code; the
-//! adapter needs no bound and no public item. `f32` and every other value pass unchanged.
+//! adapter needs no bound. `f32` and every other value pass unchanged.
+//!
+//! The generated structs' own impls (kinloop's derives, `kinloop_codegen`'s `serde_derive`) hand
+//! their fields to [`Ser`] and [`De`], which `generated` re-exports as `FloatsSer` and
+//! `FloatsDe`: a generated struct written alone writes its numbers as it does inside a state.
 
 use super::Float;
 use serde::de::{self, DeserializeSeed, Deserializer, EnumAccess, MapAccess, SeqAccess, VariantAccess, Visitor};
@@ -33,11 +37,12 @@ impl<T: Serialize + ?Sized> Serialize for Within<'_, T> {
     }
 }
 
-/// The format's serializer, with `f64` written as [`Float`] writes it.
-struct Ser<S>(S);
+/// The format's serializer, with `f64` written as `Float` writes it. Public for the serde
+/// impls kinloop's derives emit for generated structs (`generated::FloatsSer`).
+pub struct Ser<S>(pub S);
 
 /// One of the format's compound serializers, each element through [`Ser`].
-struct Compound<C>(C);
+pub struct Compound<C>(C);
 
 /// Methods passed through unchanged.
 macro_rules! forward_ser {
@@ -205,9 +210,10 @@ macro_rules! compound_fields {
 compound_fields!(SerializeStruct);
 compound_fields!(SerializeStructVariant);
 
-/// The format's deserializer, with an `f64` read as [`Float`] reads it; every value within a
-/// compound one read through it too.
-struct De<D>(D);
+/// The format's deserializer, with an `f64` read as `Float` reads it; every value within a
+/// compound one read through it too. Public for the serde impls kinloop's derives emit for
+/// generated structs (`generated::FloatsDe`).
+pub struct De<D>(pub D);
 
 /// A visitor handed on to the format, which hands each value within back through [`De`].
 struct Wrap<V>(V);

@@ -7,9 +7,9 @@ use crate::solvers::newton::SolveReport;
 /// A generated state's named fields: inputs `I`, unknowns `U` with their analogs `UV`, `UA`,
 /// outputs `O` with theirs `OV`, `OA`, and the solve's report and health. A generated state
 /// serializes through it (`serde(into, from)`), so a state's JSON names every value. Every
-/// number within is written and read as `crate::floats_serde` writes and reads it (the generated
-/// structs derive serde for `f64` fields, which JSON wrote as `null` when not finite), so that a
-/// state's NaN and infinities read back as they were.
+/// number within is written and read as `crate::floats_serde` writes and reads it (each field
+/// through its `within` adapter, whatever the field's type, as the generated state's own impl
+/// hands the whole through it too), so that a state's NaN and infinities read back as they were.
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(
