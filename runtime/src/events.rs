@@ -154,10 +154,13 @@ pub struct Event {
     /// nearly singular farther out (a four-bar some thousandths of its size from a kite, at
     /// its change point), a crossing is located to a few millionths, about the square root of
     /// the residual tolerance.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub x: Vec<f64>,
     /// Fraction of the sweep path at the event (`0` at `from`, `1` at `to`).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub tau: f64,
     /// Positions of the unknowns at the event.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub q: Vec<f64>,
     /// The block that became singular, if identified, with its index in solve order.
     #[cfg_attr(feature = "serde", serde(skip_deserializing))]

@@ -1,7 +1,7 @@
 //! Serialize and Deserialize of the crate's numbers (feature `serde`), exactly whatever their
 //! values: one convention for every type that holds them (a [`Table`](crate::Table)'s rows, a
-//! state and a named state, a [`Vec2`](crate::Vec2), a synthesis report, the structs
-//! `mechanism!` generates).
+//! state and a named state, a [`Vec2`](crate::Vec2), a solve report, an event, a synthesis
+//! task, report and configuration, the structs `mechanism!` generates).
 //!
 //! Tables hold NaN where a value is not known, states an infinite smallest pivot where no block
 //! was factorised, synthesis reports infinities and NaN where a candidate is degenerate (the

@@ -1,6 +1,6 @@
 """The IEEE-754 bits of the edge values in `csv_round_trip.rs` and `serde_round_trip.rs`
 (`edge_values_and_awkward_names_read_back_to_the_bit`, `a_table_of_edge_values_and_awkward_names_reads_back_from_json`,
-`EDGES` of `serde_round_trip.rs` for its states and vectors, and of `fixtures/tests/serde_generated.rs`),
+`EDGES` of `serde_round_trip.rs` for its states, vectors and table of types, and of `fixtures/tests/serde_generated.rs`),
 computed apart from kinloop and Rust: Python's own doubles, packed big-endian.
 
 Printed (python3 runtime/tests/csv_round_trip_bits.py):

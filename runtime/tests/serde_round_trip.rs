@@ -421,3 +421,80 @@ fn vectors_of_edge_values_read_back_from_json_bit_for_bit() {
     let cbor: Vec2<[f64; 2]> = ciborium::from_reader(bytes.as_slice()).unwrap();
     assert!(cbor.x[0].is_nan() && cbor.x[1].to_bits() == 0x8000_0000_0000_0000 && cbor.y == many.y);
 }
+
+/// `value` reads back from JSON and from CBOR with its numbers (`numbers` lists them) bit for
+/// bit (any NaN for a NaN from JSON, whose `"NaN"` keeps no payload). `name` says which row of
+/// the table failed.
+fn assert_numbers_round_trip<T: Serialize + DeserializeOwned>(name: &str, value: &T, numbers: fn(&T) -> Vec<f64>) {
+    let bits: Vec<u64> = numbers(value).iter().map(|v| v.to_bits()).collect();
+    let json = serde_json::to_string(value).unwrap();
+    let back: T = serde_json::from_str(&json).unwrap_or_else(|e| panic!("{name}: {json} does not read back: {e}"));
+    for (v, &b) in numbers(&back).iter().zip(&bits) {
+        assert!(is_edge(*v, b), "{name}: {v:e} for {b:#x}: {json}");
+    }
+    let mut cbor = Vec::new();
+    ciborium::into_writer(value, &mut cbor).unwrap();
+    let back: T = ciborium::from_reader(cbor.as_slice()).unwrap_or_else(|e| panic!("{name}: CBOR: {e}"));
+    let read: Vec<u64> = numbers(&back).iter().map(|v| v.to_bits()).collect();
+    assert_eq!(read, bits, "{name}: CBOR of {json}");
+}
+
+/// The types of the runtime that serialize (feature `serde`) numbers of their own fields (not
+/// through a type tested above), one row each: with NaN, the infinities, a negative zero and
+/// subnormals in each of their numbers, they read back from JSON and CBOR bit for bit. JSON
+/// wrote their non-finite numbers as `null`, which did not read back ("invalid type: null,
+/// expected f64"), or, for the optional `Constraints::max_error`, read back as `None`.
+#[test]
+fn every_type_with_numbers_reads_back_its_edge_values() {
+    use kinloop_runtime::SolveReport;
+    use kinloop_runtime::synthesis::{
+        Channel, Constraints, DeConfig, LinkRatioBound, LocalConfig, PlacementBounds, Search, Task, Timing,
+        TransmissionBound, Variable,
+    };
+    // Each start puts every edge value in every number at least once.
+    for start in 0..EDGES.len() {
+        let e = |k: usize| EDGES[(k + start) % EDGES.len()].0;
+        assert_numbers_round_trip("SolveReport", &SolveReport::given(e(0)), |r| vec![r.residual]);
+        let event = Event { kind: EventKind::Kink, x: vec![e(0), e(1)], tau: e(2), q: vec![e(3), e(4)], block: None };
+        assert_numbers_round_trip("Event", &event, |v| [v.x.clone(), vec![v.tau], v.q.clone()].concat());
+        let constraints = Constraints {
+            transmission: Some(TransmissionBound { coupler: "b".into(), follower: "c".into(), min: e(0) }),
+            link_ratio: Some(LinkRatioBound { links: vec!["a".into()], max: e(1) }),
+            max_error: Some(e(2)),
+            ..Constraints::default()
+        };
+        assert_numbers_round_trip("Constraints", &constraints, |c| {
+            vec![
+                c.transmission.as_ref().unwrap().min,
+                c.link_ratio.as_ref().unwrap().max,
+                c.max_error.expect("max_error read back"),
+            ]
+        });
+        let mut local = LocalConfig::default();
+        (local.tol, local.step_tol, local.lambda) = (e(0), e(1), e(2));
+        assert_numbers_round_trip("LocalConfig", &local, |l| vec![l.tol, l.step_tol, l.lambda]);
+        let mut search = Search::default();
+        (search.seeds, search.distinct) = (vec![vec![e(0), e(1)], vec![e(2)]], e(3));
+        assert_numbers_round_trip("Search", &search, |s| [s.seeds.concat(), vec![s.distinct]].concat());
+        let mut de = DeConfig::default();
+        (de.f, de.cr) = (e(0), e(1));
+        assert_numbers_round_trip("DeConfig", &de, |d| vec![d.f, d.cr]);
+        assert_numbers_round_trip("Variable", &Variable::new("a", e(0), e(1)), |v| vec![v.lo, v.hi]);
+        let mut task = Task::new(vec![Channel::Value("x".into())], vec![vec![e(0)], vec![e(1)]]);
+        task.weights = vec![e(2)];
+        task.timing = Timing::Prescribed(vec![vec![e(3)], vec![e(4)]]);
+        task.placement =
+            Some(PlacementBounds { dx: (e(5), e(6)), dy: (e(7), e(8)), angle: (e(9), e(10)), scale: (e(11), e(12)) });
+        assert_numbers_round_trip("Task", &task, |t| {
+            let Timing::Prescribed(inputs) = &t.timing else { panic!("{t:?}") };
+            let p = t.placement.as_ref().unwrap();
+            let placement = [p.dx, p.dy, p.angle, p.scale].into_iter().flat_map(|(lo, hi)| [lo, hi]);
+            [t.targets.concat(), t.weights.clone(), inputs.concat(), placement.collect()].concat()
+        });
+        let free = Timing::Free { lo: e(0), hi: e(1) };
+        assert_numbers_round_trip("Timing::Free", &free, |t| match t {
+            Timing::Free { lo, hi } => vec![*lo, *hi],
+            other => panic!("{other:?}"),
+        });
+    }
+}

@@ -13,6 +13,7 @@ pub struct TransmissionBound {
     /// The follower's angle column.
     pub follower: String,
     /// The smallest acceptable transmission angle (radians; `0` only reports it).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub min: f64,
 }
 
@@ -24,6 +25,7 @@ pub struct LinkRatioBound {
     /// The parameters compared (at least two).
     pub links: Vec<String>,
     /// The largest acceptable ratio of the longest to the shortest (at least 1).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub max: f64,
 }
 
@@ -77,6 +79,7 @@ pub struct Constraints {
     /// the mechanism's length unit, an angle's difference in radians, each times its weight).
     /// Without it a candidate that misses its targets far, but meets them on one assembly
     /// mode in order, is valid: the least-squares optimum of designs that cannot reach them.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub max_error: Option<f64>,
 }
 

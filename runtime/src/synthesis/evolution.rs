@@ -49,8 +49,10 @@ pub struct DeConfig {
     /// population, at most [`DeConfig::MAX_EVALUATIONS`] evaluations.
     pub generations: usize,
     /// The differential weight, in `(0, 2]` (default `0.7`).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub f: f64,
     /// The crossover probability, in `[0, 1]` (default `0.9`).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub cr: f64,
     /// How many of the best members (lowest residual norm, ties by index) the local solve
     /// polishes, each one candidate (at least 1, at most the population; default `3`).

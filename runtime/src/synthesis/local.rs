@@ -18,6 +18,7 @@ pub struct LocalConfig {
     /// Converged when the residual norm is at most `tol` times the size of the targets
     /// (their largest weighted distance from their centroid; a radian times the largest angle
     /// weight where every target is an angle; default `1e-14`, rounding).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub tol: f64,
     /// Converged when a damped step changes no unknown by more than `step_tol` times its
     /// size (`|dz_i| <= step_tol (|z_i| + step_tol w_i)`, `w_i` the width of its bounds, or its
@@ -27,8 +28,10 @@ pub struct LocalConfig {
     /// (whose residual need not be zero), but the step is damped, and under heavy damping
     /// (grown by rejected steps, as near where the design stops assembling) a step that small
     /// can stop it where the gradient is not zero.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub step_tol: f64,
     /// Initial damping, relative to the diagonal of `J^T J` (default `1e-3`).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub lambda: f64,
 }
 

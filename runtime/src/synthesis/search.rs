@@ -48,6 +48,7 @@ pub struct Search {
     /// Points of the search's unknowns to solve from before the global stage (e.g. classical
     /// closed-form designs; default none). They run with the part of a split search whose
     /// starts begin at `0`, so that the parts merge into the whole.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub seeds: Vec<Vec<f64>>,
     /// The local solve from each start.
     pub local: LocalConfig,
@@ -55,6 +56,7 @@ pub struct Search {
     pub keep: usize,
     /// Two candidates are one design when every design variable agrees to this, relative to
     /// its range (default `1e-6`); the report keeps the better.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub distinct: f64,
 }
 

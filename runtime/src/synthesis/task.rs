@@ -31,13 +31,15 @@ pub enum Timing {
     /// Not given yet: a task needs [`Task::timed`], [`Task::timed_inputs`] or [`Task::untimed`].
     Unset,
     /// The input values at each target (one row of `NI` values per target).
-    Prescribed(Vec<Vec<f64>>),
+    Prescribed(#[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))] Vec<Vec<f64>>),
     /// The input value of each target is a variable of the search, within `[lo, hi]`; the targets
     /// must be met in order along one monotone motion (a mechanism with one input).
     Free {
         /// Lower bound of the input values.
+        #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
         lo: f64,
         /// Upper bound of the input values.
+        #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
         hi: f64,
     },
 }
@@ -49,12 +51,16 @@ pub enum Timing {
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PlacementBounds {
     /// Range of the translation's x.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub dx: (f64, f64),
     /// Range of the translation's y.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub dy: (f64, f64),
     /// Range of the rotation (radians).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub angle: (f64, f64),
     /// Range of the scale (positive).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub scale: (f64, f64),
 }
 
@@ -92,6 +98,7 @@ pub struct Task {
     /// What each target's values are values of, in order.
     pub channels: Vec<Channel>,
     /// One row per target: the channels' values, in order (a point contributes x then y).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub targets: Vec<Vec<f64>>,
     /// When the targets are to be met.
     pub timing: Timing,
@@ -99,6 +106,7 @@ pub struct Task {
     pub placement: Option<PlacementBounds>,
     /// Weight of every component of each channel (default 1): e.g. the angle of a motion task
     /// against its point, in length units per radian.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub weights: Vec<f64>,
 }
 

@@ -10,8 +10,10 @@ pub struct Variable {
     /// The parameter's declared name.
     pub name: String,
     /// Lower bound.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub lo: f64,
     /// Upper bound.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub hi: f64,
 }
 

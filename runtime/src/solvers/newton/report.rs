@@ -78,6 +78,7 @@ pub struct SolveReport {
     pub evaluations: u32,
     /// Largest scaled residual (`|f_i| / scale_i`) over the iterated blocks, before the last
     /// correction; for a given position (`kinematics_at`), the largest unscaled residual.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub residual: f64,
     /// The weakest reason any block stopped (`StepTolerance` over `ResidualTolerance` over
     /// `Direct`).
