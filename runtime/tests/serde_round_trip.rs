@@ -455,6 +455,19 @@ fn every_type_with_numbers_reads_back_its_edge_values() {
     for start in 0..EDGES.len() {
         let e = |k: usize| EDGES[(k + start) % EDGES.len()].0;
         assert_numbers_round_trip("SolveReport", &SolveReport::given(e(0)), |r| vec![r.residual]);
+        let mut newton = NewtonConfig::default();
+        (newton.residual_tol, newton.step_tol, newton.singular_tol, newton.min_damping) = (e(0), e(1), e(2), e(3));
+        assert_numbers_round_trip("NewtonConfig", &newton, |n| {
+            vec![n.residual_tol, n.step_tol, n.singular_tol, n.min_damping]
+        });
+        let mut trace = TraceConfig::default();
+        trace.ds = e(0);
+        assert_numbers_round_trip("TraceConfig", &trace, |t| vec![t.ds]);
+        let mut sweep = SweepConfig::default();
+        (sweep.max_step, sweep.corrector_rel, sweep.corrector_abs, sweep.singular_pivot) = (e(0), e(1), e(2), e(3));
+        assert_numbers_round_trip("SweepConfig", &sweep, |s| {
+            vec![s.max_step, s.corrector_rel, s.corrector_abs, s.singular_pivot]
+        });
         let event = Event { kind: EventKind::Kink, x: vec![e(0), e(1)], tau: e(2), q: vec![e(3), e(4)], block: None };
         assert_numbers_round_trip("Event", &event, |v| [v.x.clone(), vec![v.tau], v.q.clone()].concat());
         let constraints = Constraints {

@@ -50,6 +50,7 @@ pub struct SweepConfig {
     /// so that a sample takes at most a million steps). Whatever it is, a step is also at most
     /// [`Sweep`](super::sweep::Sweep)'s natural bound (a quarter radian of an angle input), so the number of samples
     /// never sets how far a step goes.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub max_step: f64,
     /// How many times a step may be halved before the sweep diagnoses a singular position
     /// (default `40`, i.e. steps down to about `1e-12` of the sample spacing).
@@ -58,8 +59,10 @@ pub struct SweepConfig {
     /// plus `corrector_abs` of its prediction (defaults `0.25` and `1e-6`), and its slopes
     /// likewise: every unknown in its own unit (radians for an angle, its loop's size for a
     /// length), so that the test is the same in any unit of length.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub corrector_rel: f64,
     /// See [`SweepConfig::corrector_rel`].
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub corrector_abs: f64,
     /// Behaviour at a singular crossing.
     pub at_singular: AtSingular,
@@ -81,6 +84,7 @@ pub struct SweepConfig {
     /// size from its pivot, which has none. A corner of the curve (a kink event) is told from a
     /// jump to another solution only where the pivot ratio is at least the default's, whatever
     /// this value: below it, two branches lie closer than a corner's two sides may.
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub singular_pivot: f64,
 }
 

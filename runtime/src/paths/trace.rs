@@ -38,6 +38,7 @@ pub struct TraceConfig {
     /// about 0.01 rad apart on a curve dominated by angles. From [`TraceConfig::MIN_DS`] to
     /// [`TraceConfig::MAX_DS`]. The longest step: where the curve's tangent would turn by more
     /// than a tenth of a radian over it, steps are shorter (see [`TracedOf::points`]).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub ds: f64,
     /// Most points returned (default `100_000`; at most
     /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), the most an analysis holds).

@@ -19,12 +19,14 @@ pub struct NewtonConfig {
     /// Converged when every residual is at most this fraction of its row magnitude,
     /// `max_i |f_i| / scale_i <= residual_tol` (default `1e-12`; valid range `[0, 1e-3]`; `0`
     /// iterates down to the rounding floor).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub residual_tol: f64,
     /// Also stops when a full Newton step is at most this fraction of each unknown's magnitude
     /// (default `1e-13`; valid range `[0, 1e-3]`), or when the residual stops decreasing; the
     /// step is then applied and the scaled residual must still be within
     /// `1000 * max(residual_tol, 16 eps)` (the rounding floor of rows whose terms are much
     /// larger than their derivatives, e.g. near a limit position).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub step_tol: f64,
     /// Iteration cap per block (default `50`; at most `10_000`).
     pub max_iterations: u32,
@@ -33,9 +35,11 @@ pub struct NewtonConfig {
     /// magnitudes and their columns multiplied by the unknowns' units, the analogs' their
     /// columns divided by their largest entries, so that the test is the same at every size of
     /// the mechanism. (A Newton pivot may exceed 1 where a length's unit exceeds its entries.)
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub singular_tol: f64,
     /// Smallest damping factor of the backtracking line search (default `2^-12`; valid range
     /// `[1e-12, 1)`).
+    #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub min_damping: f64,
     /// Whether a block whose iteration stalls away from every root is solved again from
     /// restarts before it is reported as [`Error::NoAssembly`] (default `true`). A far guess can
