@@ -244,20 +244,14 @@ fn a_synthesis_report_with_non_finite_values_reads_back_exactly() {
         local: LocalReport { evaluations: 1, iterations: 0, stop: OptimizerStop::Stalled, residual: inf },
     };
     let none = Candidate { min_transmission: None, four_bar: None, placement: None, ..candidate.clone() };
-    let report = SynthesisReport {
-        variables: vec!["a".into(), "b".into(), "c".into()],
-        bounds: vec![(0.0, 1.0), (-inf, inf), (0.5, 0.5)],
-        candidates: vec![candidate, none],
-        starts: 0..4,
-        seeds: 0,
-        unassembled: 2,
-        refused: Vec::new(),
-        converged: 0,
-        valid: 0,
-        rejected: Rejections { link_ratio: 2, ..Rejections::default() },
-        evaluations: 9,
-        four_bar: true,
-    };
+    let mut report =
+        SynthesisReport::new(vec!["a".into(), "b".into(), "c".into()], vec![(0.0, 1.0), (-inf, inf), (0.5, 0.5)]);
+    report.candidates = vec![candidate, none];
+    report.starts = 0..4;
+    report.unassembled = 2;
+    report.rejected = Rejections { link_ratio: 2, ..Rejections::default() };
+    report.evaluations = 9;
+    report.four_bar = true;
     let back = round_trip(&report);
     // The same values to the bit (NaN as any NaN: its payload is not kept), `Some` and `None`
     // as they were.

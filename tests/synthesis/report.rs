@@ -2,7 +2,7 @@
 //! runtime's reader), and the progress of a search.
 
 use super::mechanisms::{Slider, slider_x};
-use kinloop::synthesis::{Design, Problem, Rejections, Search, SynthesisError, SynthesisReport, Task};
+use kinloop::synthesis::{Design, Problem, Search, SynthesisError, SynthesisReport, Task};
 use std::cell::RefCell;
 use std::sync::Mutex;
 
@@ -53,20 +53,10 @@ fn report_of(variables: &[&str]) -> SynthesisReport {
 /// A report of no candidate over `variables`, of a problem that names its four-bar's links
 /// where `four_bar` is set.
 fn four_bar_report_of(variables: &[&str], four_bar: bool) -> SynthesisReport {
-    SynthesisReport {
-        four_bar,
-        variables: variables.iter().map(|v| v.to_string()).collect(),
-        bounds: vec![(0.0, 1.0); variables.len()],
-        candidates: Vec::new(),
-        starts: 0..0,
-        seeds: 0,
-        unassembled: 0,
-        refused: Vec::new(),
-        converged: 0,
-        valid: 0,
-        rejected: Rejections::default(),
-        evaluations: 0,
-    }
+    let names = variables.iter().map(|v| v.to_string()).collect();
+    let mut report = SynthesisReport::new(names, vec![(0.0, 1.0); variables.len()]);
+    report.four_bar = four_bar;
+    report
 }
 
 /// A design variable named as a column of the table's own is refused, naming it: the table

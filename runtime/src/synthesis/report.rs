@@ -14,8 +14,31 @@ use std::ops::Range;
 /// link's infinite [`Defect::LinkRatio`], a NaN [`Defect::Miss`]): JSON has neither, and a
 /// self-describing format gets them as the strings `"inf"`, `"-inf"`, `"NaN"`, where `null`
 /// would be `None` in an optional field. `null` for a number that is not optional reads as NaN.
+///
+/// Fields may be added in any version: outside this crate a report is made with
+/// [`SynthesisReport::new`] and its fields set, not with a struct literal, which would break
+/// with the next field:
+///
+/// ```compile_fail,E0639
+/// use kinloop_runtime::synthesis::{Rejections, SynthesisReport};
+/// let report = SynthesisReport {
+///     variables: Vec::new(),
+///     bounds: Vec::new(),
+///     candidates: Vec::new(),
+///     starts: 0..0,
+///     seeds: 0,
+///     unassembled: 0,
+///     refused: Vec::new(),
+///     converged: 0,
+///     valid: 0,
+///     rejected: Rejections::default(),
+///     evaluations: 0,
+///     four_bar: false,
+/// };
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct SynthesisReport {
     /// The design variables' names, the order of [`Candidate::values`].
     pub variables: Vec<String>,
@@ -61,6 +84,34 @@ pub struct SynthesisReport {
 }
 
 impl SynthesisReport {
+    /// A report of no search yet over the design variables `variables`, with their `bounds` in
+    /// the same order: no candidate, no start, every count zero, no four-bar. Its fields are
+    /// public to set (a report assembled by hand, a test):
+    ///
+    /// ```
+    /// use kinloop_runtime::synthesis::SynthesisReport;
+    /// let mut report = SynthesisReport::new(vec!["r".into()], vec![(0.5, 2.0)]);
+    /// report.four_bar = true;
+    /// assert_eq!((report.candidates.len(), report.starts.len(), report.evaluations), (0, 0, 0));
+    /// assert!(report.best().is_none());
+    /// ```
+    pub fn new(variables: Vec<String>, bounds: Vec<(f64, f64)>) -> Self {
+        SynthesisReport {
+            variables,
+            bounds,
+            candidates: Vec::new(),
+            starts: 0..0,
+            seeds: 0,
+            unassembled: 0,
+            refused: Vec::new(),
+            converged: 0,
+            valid: 0,
+            rejected: Rejections::default(),
+            evaluations: 0,
+            four_bar: false,
+        }
+    }
+
     /// The best valid candidate, if any.
     pub fn best(&self) -> Option<&Candidate> {
         self.candidates.first().filter(|c| c.is_valid())
