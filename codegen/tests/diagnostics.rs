@@ -471,11 +471,13 @@ fn an_angle_unknown_is_no_coordinate_of_a_body_or_a_force() {
 
 #[test]
 fn an_angle_written_as_the_length_of_a_polar_term_gets_the_swap() {
-    // `psi` turns the rod in the point, so `psi @ l` in the loop has its operands swapped.
+    // `psi` turns the rod in the point and is the argument of a sine, so `psi @ l` in the loop
+    // has its operands swapped. (Without the sine, nothing but the two terms tells which of
+    // `psi` and `l` is the length: a tie, see `a_bare_term_beside_an_expression_...`.)
     let e = errors(
         "pub struct SliderCrank { params r, l, e; input phi; unknowns psi, x;
          loop oab: r @ phi == (x, e) + psi @ l;
-         point mid = r @ phi + 0.5 * l @ psi; }",
+         point mid = r @ phi + 0.5 * l @ psi; output lean = sin(psi); }",
     );
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(e[0].starts_with("`psi` is an angle (elsewhere it turns a link"), "{e:#?}");
@@ -1323,4 +1325,93 @@ fn expression_terms_of_two_names_in_opposite_orders_are_one_error() {
             assert_eq!(e[0], tie, "{e:#?}");
         }
     }
+}
+
+/// The tie message of two terms `first` and `second` (as written in the message) that take
+/// `a` and `b` in opposite orders.
+fn tie_message(first: &str, second: &str, [a, b]: [&str; 2]) -> String {
+    format!(
+        "`{first}` and `{second}`, written after it, take `{a}` and `{b}` in opposite orders, and nothing else in the \
+         mechanism tells which is the length: `@` takes `length @ angle`, so write the two terms alike, `{first}` \
+         if `{a}` is the length, `{second}` if `{b}` is"
+    )
+}
+
+/// A bare term beside an expression term of the same two names in opposite roles (`l @ psi`
+/// beside `(2 * psi) @ l`, `psi @ l` beside `0.5 * l @ psi`), nothing else telling which is the
+/// length, was told to swap the bare one, in either order, where two bare terms and two
+/// expression terms get the tie: it gets the tie too, at the first written, in either order.
+#[test]
+fn a_bare_term_beside_an_expression_of_its_names_in_opposite_roles_is_a_tie() {
+    // Each pair as written, and as the message shows it, with the names in its first term's order.
+    for ((one, one_shown), (two, two_shown), names) in [
+        (("l @ psi", "l @ psi"), ("(2 * psi) @ l", "(2 * psi) @ l"), ["l", "psi"]),
+        (("psi @ l", "psi @ l"), ("0.5 * l @ psi", "(0.5 * l) @ psi"), ["psi", "l"]),
+    ] {
+        for ((first, first_shown), (second, second_shown), [a, b]) in
+            [((one, one_shown), (two, two_shown), names), ((two, two_shown), (one, one_shown), [names[1], names[0]])]
+        {
+            let e = errors(&format!(
+                "pub struct S {{ params r, l, e; input phi; unknowns psi, x;
+                 loop c: r @ phi == (x, e) + {first}; point p = (x, 0) + {second}; }}"
+            ));
+            assert_eq!(e, [tie_message(first_shown, second_shown, [a, b])], "{first}, {second}");
+        }
+    }
+}
+
+/// Two terms of the same two names in opposite roles, bare or expressions, are judged by one
+/// and the same evidence: a name written in a coordinate of a position or in a sum beside a
+/// length is a length, one in a sine elsewhere an angle. Where it tells, the term it says is
+/// wrong is told, alone and in either order; the verdict followed source order for expressions,
+/// and two bare terms took no coordinate or sum for evidence (a tie).
+#[test]
+fn what_settles_which_name_is_the_length_blames_the_same_term_in_either_order() {
+    // `l`-first terms (`l` the length) and `psi`-first ones, with what each says when wrong.
+    let l_first = [
+        ("l @ psi", "`l` is an angle", "the two are swapped; write `psi @ l`"),
+        ("0.5 * l @ psi", "`0.5 * l` is an angle", "or if the two are swapped, write `psi @ (0.5 * l)`"),
+    ];
+    let psi_first = [
+        ("psi @ l", "`psi` is an angle", "the two are swapped; write `l @ psi`"),
+        ("(2 * psi) @ l", "`2 * psi` is an angle", "or if the two are swapped, write `l @ (2 * psi)`"),
+    ];
+    // What the rest of the mechanism says, and whether it makes `l` the length.
+    let evidence = [
+        ("point q = (x, 2 * l);", true),
+        ("let k = x + l; output o = k;", true),
+        ("output s = sin(psi);", true),
+        ("let k = x + psi; output o = k;", false),
+        ("point q = (x, psi);", false),
+        ("output s = cos(l);", false),
+    ];
+    for (settles, l_is_length) in evidence {
+        for l_term in l_first {
+            for psi_term in psi_first {
+                let wrong = if l_is_length { psi_term } else { l_term };
+                for (first, second) in [(l_term.0, psi_term.0), (psi_term.0, l_term.0)] {
+                    let e = errors(&format!(
+                        "pub struct S {{ params r, l, e; input phi; unknowns psi, x;
+                         loop c: r @ phi == (x, e) + {first}; point p = (x, 0) + {second}; {settles} }}"
+                    ));
+                    let case = format!("{first}, {second}, {settles}");
+                    assert_eq!(e.len(), 1, "{case}: {e:#?}");
+                    assert!(e[0].starts_with(wrong.1) && e[0].ends_with(wrong.2), "{case}: {e:#?}");
+                }
+            }
+        }
+    }
+}
+
+/// A pair of terms in opposite roles written twice (`l @ psi`, `psi @ l` in the loop and again
+/// in the points) is one tie: the second pair's names are lengths by the first's, so its terms
+/// are told nothing more.
+#[test]
+fn a_pair_in_opposite_roles_written_twice_is_one_tie() {
+    let e = errors(
+        "pub struct S { params r, l, e; input phi; unknowns psi, x;
+         loop c: r @ phi == (x, e) + l @ psi; point p = (x, 0) + psi @ l; point q = (x, 0) + psi @ l;
+         point w = l @ psi; }",
+    );
+    assert_eq!(e, [tie_message("l @ psi", "psi @ l", ["l", "psi"])], "{e:#?}");
 }

@@ -384,10 +384,45 @@ fn a_mismatched_closing_bracket_names_the_one_it_closes() {
 #[test]
 fn a_swapped_polar_term_is_refused_at_run_time() {
     let text = "pub struct SliderCrank {\n    params r = 1, l = 3, e = 0.5;\n    input phi;\n    unknowns psi, x = 3;\n    \
-                loop oab: r @ phi == (x, e) + psi @ l;\n    point mid = r @ phi + 0.5 * l @ psi;\n}\n";
+                loop oab: r @ phi == (x, e) + psi @ l;\n    point mid = r @ phi + 0.5 * l @ psi;\n    \
+                output lean = sin(psi);\n}\n";
     let Err(ReadError::Rejected(d)) = Model::read("swap.kl", text) else { panic!("accepted: {text}") };
     let got: Vec<(usize, usize)> = d.items.iter().map(|i| (i.line, i.column)).collect();
     assert_eq!(got, [(5, 35)], "{d}");
     assert!(d.items[0].message.starts_with("`psi` is an angle"), "{d}");
     assert!(d.items[0].message.ends_with("write `l @ psi`"), "{d}");
+}
+
+/// A slider-crank whose loop ends in `first` and whose point `p` ends in `second`, with `more`
+/// on a line of its own: the two terms start at line 5, column 35, and line 6, column 24.
+fn two_terms(first: &str, second: &str, more: &str) -> String {
+    format!(
+        "pub struct SliderCrank {{\n    params r = 1, l = 3, e = 0.5;\n    input phi;\n    unknowns psi, x = 3;\n    \
+         loop oab: r @ phi == (x, e) + {first};\n    point p = (x, 0) + {second};\n    {more}\n}}\n"
+    )
+}
+
+/// Two polar terms of two names in opposite roles, bare or expressions, are judged at run time
+/// as by the macro: a tie at the first where nothing else tells which name is the length (a bare
+/// term beside an expression too), else the wrong term alone, in either order, whatever tells
+/// (a sine, a coordinate).
+#[test]
+fn polar_terms_in_opposite_roles_are_judged_at_run_time_as_by_the_macro() {
+    let (at_loop, at_point) = ((5, 35), (6, 24));
+    let tie = "nothing else in the mechanism tells which is the length";
+    for (first, second, more, at, told) in [
+        ("l @ psi", "(2 * psi) @ l", "", at_loop, tie),
+        ("(2 * psi) @ l", "l @ psi", "", at_loop, tie),
+        ("l @ psi", "psi @ l", "point q = (x, 0) + psi @ l; point w = l @ psi;", at_loop, tie),
+        ("0.5 * l @ psi", "(2 * psi) @ l", "output lean = sin(psi);", at_point, "write `l @ (2 * psi)`"),
+        ("(2 * psi) @ l", "0.5 * l @ psi", "output lean = sin(psi);", at_loop, "write `l @ (2 * psi)`"),
+        ("l @ psi", "psi @ l", "point q = (x, 2 * l);", at_point, "write `l @ psi`"),
+        ("psi @ l", "l @ psi", "point q = (x, 2 * l);", at_loop, "write `l @ psi`"),
+    ] {
+        let text = two_terms(first, second, more);
+        let Err(ReadError::Rejected(d)) = Model::read("opposite.kl", &text) else { panic!("accepted: {text}") };
+        let got: Vec<(usize, usize)> = d.items.iter().map(|i| (i.line, i.column)).collect();
+        assert_eq!(got, [at], "{text}\n{d}");
+        assert!(d.items[0].message.contains(told), "{text}\n{d}");
+    }
 }

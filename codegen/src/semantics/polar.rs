@@ -14,11 +14,15 @@
 //! are angles, a mix of an angle and a length if not, a length in neither case: no swap is
 //! told, but a length to write and, if they are lengths, an angle for them. A length that is
 //! an angle only by such terms (`l` by `psi @ l`) where its own angle is one (`l @ psi`, with
-//! `0.5 * l @ psi` elsewhere) is right as written: the other term is told, and only it. Two
-//! terms that take two names in opposite orders (`l @ psi`, `psi @ l`), with nothing else to
-//! tell which is the length, are one error at the first, which says so; so are two terms whose
-//! lengths are expressions of the two (`0.5 * l @ psi`, `(2 * psi) @ l`), where neither name is
-//! an angle but by them, nor a length by a position or a sum beside one.
+//! `0.5 * l @ psi` elsewhere) is right as written: the other term is told, and only it.
+//!
+//! Two terms that take two names in opposite roles, bare or expressions alike (`l @ psi`
+//! beside `psi @ l`, `(2 * psi) @ l` or `0.5 * l @ psi` beside either), are judged together
+//! by one evidence, the two set aside: a name in a sine or cosine elsewhere, or set by an `eq`
+//! to an angle, is an angle; one in a coordinate of a position, or in a sum beside a length, a
+//! length. Where it tells which name is the length, the term that takes it as its angle is told,
+//! and only it, in whichever order they are written; where nothing tells (or what tells
+//! contradicts itself), the first written is one error that says so, naming both readings.
 //!
 //! A coordinate of a Cartesian vector that is an angle (`(x, phi)`) is refused too where the
 //! vector is a position: in a loop, which adds lengths, a point, the point a force acts at, a
@@ -44,7 +48,7 @@
 
 use super::dynamics::{leaf_name, sets_to_angle};
 use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair};
-use crate::graph::dag::{Graph, Leaf, NodeId, Op};
+use crate::graph::dag::{Graph, Leaf, NodeId};
 use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
 use std::collections::{HashMap, HashSet};
@@ -159,17 +163,18 @@ pub(super) fn note_places(lw: &Lowerer, angles: &mut Angles) {
 /// `(phi + 0.0) @ th`, `norm((phi, psi)) @ th`) judged by its kind, as a coordinate is
 /// (`(r * phi) @ th` is a length). Each says to swap the two only where the angle of `@` is no
 /// angle by the rest of the mechanism (in `psi @ phi`, with `phi` an angle elsewhere, swapping
-/// cannot help). Names and degrees first: the angle of a term they find swapped (`l` in
-/// `psi @ l`) is an angle only by that mistake, and makes nothing else one (`0.5 * l @ psi`,
-/// `(x, 2 * l)` and `x + l` are told nothing more). A term is told only where the rest of the
-/// mechanism, or nothing, tells which of its names is the length (see [`Apart`]). Run before
-/// the checks of coordinates and sums, which take those angles for lengths.
+/// cannot help). Pairs of terms of two names in opposite roles first ([`opposite_orders`]),
+/// then names and degrees: the angle of a term they find swapped (`l` in `psi @ l`) is an angle
+/// only by that mistake, and makes nothing else one (`0.5 * l @ psi`, `(x, 2 * l)` and `x + l`
+/// are told nothing more). Run before the checks of coordinates and sums, which take those
+/// angles for lengths.
 pub(super) fn terms(lw: &Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
     let suspects = suspects(lw, angles);
     // The terms told with another one, as the other order of its two names.
     let mut told: HashSet<usize> = HashSet::new();
-    let mut found = direct_terms(lw, angles, &suspects, &mut told);
-    found.extend(expression_terms(lw, angles, &suspects, &mut told));
+    let mut found = opposite_orders(lw, angles, &mut told);
+    found.extend(direct_terms(lw, angles, &suspects, &told));
+    found.extend(expression_terms(lw, angles, &suspects, &told));
     // Each error is kept with its term's index, so that they read in the order written.
     found.sort_by_key(|(i, _)| *i);
     found.into_iter().map(|(_, e)| e).collect()
@@ -201,53 +206,36 @@ enum Direct {
     Fine,
     /// Its length is an angle: the error, with the fix.
     Error(syn::Error),
-    /// It and the term `mirror` take the same two names in opposite orders: one error for both,
-    /// told at the term `at`, the first of the two.
-    Tie { mirror: usize, at: usize, error: syn::Error },
 }
 
 /// The errors for the terms whose length is a bare name or written in degrees, each with the
-/// index of its term. They are judged before the expressions: the angle of a term found
-/// swapped (`l` in `psi @ l`) is an angle only by that mistake, and makes nothing else one.
+/// index of its term, but those `told` already. They are judged before the expressions: the
+/// angle of a term found swapped (`l` in `psi @ l`) is an angle only by that mistake, and
+/// makes nothing else one.
 fn direct_terms(
     lw: &Lowerer,
     angles: &mut Angles,
     suspects: &[NodeId],
-    told: &mut HashSet<usize>,
+    told: &HashSet<usize>,
 ) -> Vec<(usize, syn::Error)> {
     // Found at the first term with an angle to judge: most mechanisms have none.
     let mut arguments = None;
     let mut found = Vec::new();
-    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| is_direct(t)) {
-        if told.contains(&i) {
-            continue;
+    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(i, t)| is_direct(t) && !told.contains(i)) {
+        if let Direct::Error(e) = direct_verdict(lw, angles, t, suspects, &mut arguments) {
+            found.push((i, e));
         }
-        let verdict = direct_verdict(lw, angles, (i, t), suspects, &mut arguments);
-        found.extend(record(i, verdict, told));
     }
     found
 }
 
-/// The error of the `i`th term's `verdict`, with the index of the term it is told at; the
-/// other term of a tie is noted as `told`, so that it is not judged again.
-fn record(i: usize, verdict: Direct, told: &mut HashSet<usize>) -> Option<(usize, syn::Error)> {
-    match verdict {
-        Direct::Fine => None,
-        Direct::Error(e) => Some((i, e)),
-        Direct::Tie { mirror, at, error } => {
-            told.insert(mirror);
-            Some((at, error))
-        }
-    }
-}
-
-/// The verdict on the `i`th term `t`, of a bare name or degrees. `arguments` holds the
+/// The verdict on the term `t`, of a bare name or degrees. `arguments` holds the
 /// trigonometric arguments found without the `suspects`, computed here the first time a term
 /// needs them. A term found right or swapped marks the names it shows to be lengths.
 fn direct_verdict(
     lw: &Lowerer,
     angles: &mut Angles,
-    (i, t): (usize, &NamedLength),
+    t: &NamedLength,
     suspects: &[NodeId],
     arguments: &mut Option<Vec<NodeId>>,
 ) -> Direct {
@@ -260,18 +248,10 @@ fn direct_verdict(
     }
     let arguments =
         arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(&lw.graph, &angles.roots, suspects));
-    match length_apart(lw, angles, i, t, arguments) {
-        Apart::Angle => {}
-        Apart::Right(leaf) => {
-            angles.swapped.insert(leaf);
-            angles.lengths.insert(leaf);
-            return Direct::Fine;
-        }
-        Apart::Tie { mirror, leaves } => {
-            angles.swapped.extend(leaves);
-            let names = [t.length.as_str(), t.angle.as_str()];
-            return Direct::Tie { mirror, at: i, error: tie(t, &lw.named_lengths[mirror], mirror > i, names) };
-        }
+    if let Some(leaf) = right_apart(lw, angles, t, arguments) {
+        angles.swapped.insert(leaf);
+        angles.lengths.insert(leaf);
+        return Direct::Fine;
     }
     let fix = fix_by_angle(lw, angles, t, arguments, swap);
     Direct::Error(length_error(t, &why, &fix))
@@ -291,27 +271,25 @@ fn expression_terms(
     lw: &Lowerer,
     angles: &mut Angles,
     suspects: &[NodeId],
-    told: &mut HashSet<usize>,
+    told: &HashSet<usize>,
 ) -> Vec<(usize, syn::Error)> {
     let mut found = Vec::new();
     for (i, t) in lw.named_lengths.iter().enumerate().filter(|(_, t)| !is_direct(t)) {
-        if !told.contains(&i) {
-            let verdict = expression_verdict(lw, angles, (i, t), suspects);
-            found.extend(record(i, verdict, told));
+        if !told.contains(&i)
+            && let Direct::Error(e) = expression_verdict(lw, angles, t, suspects)
+        {
+            found.push((i, e));
         }
     }
     found
 }
 
-/// The verdict on the `i`th term `t`, whose length is an expression: an error if its kind is
+/// The verdict on the term `t`, whose length is an expression: an error if its kind is
 /// an angle.
-fn expression_verdict(lw: &Lowerer, angles: &mut Angles, (i, t): (usize, &NamedLength), suspects: &[NodeId]) -> Direct {
+fn expression_verdict(lw: &Lowerer, angles: &mut Angles, t: &NamedLength, suspects: &[NodeId]) -> Direct {
     let Some(why) = why_expression(lw, angles, t.node) else { return Direct::Fine };
     if t.constant_angle {
         return Direct::Error(length_error(t, &why, &arc(t)));
-    }
-    if let Some(tie) = expression_mirror(lw, angles, (i, t), suspects) {
-        return tie;
     }
     // An expression is seldom a swapped angle (`(2 * phi) @ psi` turns by `psi`, and the
     // angle of `@` is an angle by that term alone): both ways are told, where both could be.
@@ -348,44 +326,23 @@ fn arc_or_swap(t: &NamedLength) -> String {
     format!("{}, or if the two are swapped, write `{} @ {}`", arc(t), t.angle, t.factor)
 }
 
-/// What the length of a polar term `length @ angle` of two names, the length an angle, is by
-/// the rest of the mechanism (the terms whose length is an angle set aside).
-enum Apart {
-    /// An angle (or not a name of one): the term is judged by its angle.
-    Angle,
-    /// An angle only by the terms set aside, whose own length is an angle, where the term's
-    /// angle is an angle: the term is right as written, and the other terms are to be swapped.
-    Right(Leaf),
-    /// Neither name an angle but by the terms set aside, and the term `mirror` takes the two in
-    /// the other order (`l @ psi` and `psi @ l`): nothing tells which is the length.
-    Tie { mirror: usize, leaves: [Leaf; 2] },
-}
-
-/// What the length of the term `t`, the `i`th, is by the rest of the mechanism (`arguments`:
-/// the trigonometric arguments found without the terms whose length is an angle).
-fn length_apart(lw: &Lowerer, angles: &Angles, i: usize, t: &NamedLength, arguments: &[NodeId]) -> Apart {
-    let g = &lw.graph;
-    let Some(length) = t.leaf.filter(|&l| !t.degrees && !angles.apart(g, l, arguments)) else { return Apart::Angle };
-    if matches!(angle_of(lw, angles, t, arguments), AngleOf::Angle) {
-        return Apart::Right(length);
-    }
-    let Op::Leaf(angle) = g.op(t.angle_node) else { return Apart::Angle };
-    let other_order = |m: &NamedLength| !m.degrees && m.leaf == Some(angle) && g.op(m.angle_node) == Op::Leaf(length);
-    let mirror = lw.named_lengths.iter().enumerate().position(|(j, m)| j != i && other_order(m));
-    match mirror {
-        Some(mirror) => Apart::Tie { mirror, leaves: [length, angle] },
-        None => Apart::Angle,
-    }
+/// The name that is the length of the term `t` (of a bare name, an angle) where it is an angle
+/// only by the terms set aside, whose own length is an angle, and the angle of `t` is an angle
+/// by the rest of the mechanism (`arguments`: the trigonometric arguments found without those
+/// terms): `t` is right as written, and the other terms are to be swapped (`l @ psi`, with
+/// `psi @ l` and `0.5 * l @ psi` elsewhere). `None` where `t` is judged by its angle.
+fn right_apart(lw: &Lowerer, angles: &Angles, t: &NamedLength, arguments: &[NodeId]) -> Option<Leaf> {
+    let length = t.leaf.filter(|&l| !t.degrees && !angles.apart(&lw.graph, l, arguments))?;
+    matches!(angle_of(lw, angles, t, arguments), AngleOf::Angle).then_some(length)
 }
 
 /// The error for the term `t` whose two names (`length`, the one it takes as the length, and
-/// `angle`) the term `m`, written `after` it or before, takes in the other order, with nothing
-/// else to tell which is the length.
-fn tie(t: &NamedLength, m: &NamedLength, after: bool, [length, angle]: [&str; 2]) -> syn::Error {
+/// `angle`) the term `m`, written after it, takes in the other order, with nothing else to tell
+/// which is the length.
+fn tie(t: &NamedLength, m: &NamedLength, [length, angle]: [&str; 2]) -> syn::Error {
     let (this, other) = (written(t), written(m));
-    let when = if after { "after" } else { "before" };
     t.term.error(format!(
-        "`{this}` and `{other}`, written {when} it, take `{length}` and `{angle}` in opposite orders, and nothing else in the \
+        "`{this}` and `{other}`, written after it, take `{length}` and `{angle}` in opposite orders, and nothing else in the \
          mechanism tells which is the length: `@` takes `length @ angle`, so write the two terms alike, `{this}` \
          if `{length}` is the length, `{other}` if `{angle}` is"
     ))
@@ -397,50 +354,132 @@ fn written(t: &NamedLength) -> String {
     format!("{length} @ {}", t.angle)
 }
 
-/// The tie of the `i`th term `t`, whose length is an expression, with another such term that
-/// takes its names crosswise (`0.5 * l @ psi` beside `(2 * psi) @ l`: a name of `t`'s length in
-/// the other's angle, one of its angle in the other's length), where nothing else in the
-/// mechanism tells which is the length: neither name is an angle with both terms (and the
-/// `suspects`) set aside, nor a length by a position or a sum beside a length. Either term
-/// makes the other's names angles, so the verdict of either alone would follow source order.
-/// The two names are lengths for every later check, as a swapped term's angle is. A bare term
-/// beside an expression (`psi @ l` beside `0.5 * l @ psi`) is left to [`length_apart`], which
-/// takes the expression's term for the rest of the mechanism.
-fn expression_mirror(
-    lw: &Lowerer,
-    angles: &mut Angles,
-    (i, t): (usize, &NamedLength),
-    suspects: &[NodeId],
-) -> Option<Direct> {
+/// The errors for the pairs of terms that take two names crosswise (`l @ psi` beside `psi @ l`,
+/// `(2 * psi) @ l` or `0.5 * l @ psi`: a name of one's length in the other's angle, and one
+/// of its angle in the other's length), bare or expressions alike, each length an angle by the
+/// other term. Either term makes the other's names angles, so the verdict of either alone
+/// would follow the order they are written in. Each pair is judged by the rest of the
+/// mechanism ([`settle`]): where it tells which name is the length, the other name is a
+/// length written in the wrong place, and the terms are left to their own verdicts, which then
+/// tell the wrong one alone; where nothing tells, the first of the two gets one error naming
+/// both readings, the two are `told`, and both names are lengths for every later check. A term
+/// is in one pair at most, the first it makes whose lengths are still angles when it is judged:
+/// a pair whose names an earlier one marked lengths is left to the terms' own verdicts.
+fn opposite_orders(lw: &Lowerer, angles: &mut Angles, told: &mut HashSet<usize>) -> Vec<(usize, syn::Error)> {
+    let mut found = Vec::new();
+    let mut paired: HashSet<usize> = HashSet::new();
+    for (i, j, names) in crosswise_pairs(lw) {
+        let judged = paired.contains(&i) || paired.contains(&j);
+        if judged || !length_is_angle(lw, angles, i) || !length_is_angle(lw, angles, j) {
+            continue;
+        }
+        paired.extend([i, j]);
+        match settle(lw, angles, [i, j], names) {
+            Reading::Length(leaf) => {
+                angles.swapped.insert(leaf);
+                angles.lengths.insert(leaf);
+            }
+            Reading::Tie => {
+                angles.swapped.extend(names);
+                told.extend([i, j]);
+                found.extend(pair_tie(lw, [i, j], names).map(|e| (i, e)));
+            }
+            Reading::Neither => {}
+        }
+    }
+    found
+}
+
+/// The pairs `(i, j)`, `i < j`, of terms that take two names crosswise, with those names: the
+/// first the `i`th term takes as its length. Terms of a constant angle (no length swapped with
+/// a name) or a length in degrees (a mistake whichever way it is mended) are in none.
+fn crosswise_pairs(lw: &Lowerer) -> Vec<(usize, usize, [Leaf; 2])> {
     let g = &lw.graph;
-    if is_direct(t) || t.constant_angle {
-        return None;
-    }
-    let (lengths, angles_of_t) = (g.leaves_of(&[t.node]), g.leaves_of(&[t.angle_node]));
-    let crosswise = |m: &NamedLength| {
-        let (m_lengths, m_angles) = (g.leaves_of(&[m.node]), g.leaves_of(&[m.angle_node]));
-        let length = lengths.iter().copied().find(|l| m_angles.contains(l))?;
-        let angle = angles_of_t.iter().copied().find(|l| m_lengths.contains(l))?;
-        Some([length, angle])
+    let candidate = |t: &NamedLength| !t.degrees && !t.constant_angle;
+    let sides: Vec<Option<[Vec<Leaf>; 2]>> = lw
+        .named_lengths
+        .iter()
+        .map(|t| candidate(t).then(|| [g.leaves_of(&[t.node]), g.leaves_of(&[t.angle_node])]))
+        .collect();
+    let pair = |i: usize, j: usize| {
+        let (Some(Some(t)), Some(Some(m))) = (sides.get(i), sides.get(j)) else { return None };
+        crosswise(t, m).map(|names| (i, j, names))
     };
-    let (j, m, [length, angle]) = lw.named_lengths.iter().enumerate().find_map(|(j, m)| {
-        let candidate = j != i && !is_direct(m) && !m.constant_angle;
-        Some((j, m, crosswise(m).filter(|_| candidate)?))
-    })?;
-    let avoided: Vec<NodeId> = suspects.iter().chain(&t.products).chain(&m.products).copied().collect();
-    let arguments = multiples::trig_arguments_avoiding(g, &angles.roots, &avoided);
-    let tells = |l: Leaf| angles.apart(g, l, &arguments) || in_a_position(lw, l) || beside_a_length(lw, angles, l);
-    if tells(length) || tells(angle) {
-        return None;
+    (0..sides.len()).flat_map(|i| (i + 1..sides.len()).filter_map(move |j| pair(i, j))).collect()
+}
+
+/// A name of `t`'s length in `m`'s angle and one of `t`'s angle in `m`'s length, each side
+/// given as its leaves `[length, angle]`.
+fn crosswise([t_length, t_angle]: &[Vec<Leaf>; 2], [m_length, m_angle]: &[Vec<Leaf>; 2]) -> Option<[Leaf; 2]> {
+    let length = t_length.iter().copied().find(|l| m_angle.contains(l))?;
+    let angle = t_angle.iter().copied().find(|l| m_length.contains(l) && *l != length)?;
+    Some([length, angle])
+}
+
+/// Whether the length of the `i`th term is an angle: a bare name that is one, or an expression
+/// whose kind is one.
+fn length_is_angle(lw: &Lowerer, angles: &mut Angles, i: usize) -> bool {
+    let Some(t) = lw.named_lengths.get(i) else { return false };
+    match t.leaf {
+        Some(leaf) => angles.why(&lw.graph, leaf, &t.length).is_some(),
+        None => why_expression(lw, angles, t.node).is_some(),
     }
-    angles.swapped.extend([length, angle]);
+}
+
+/// What the rest of the mechanism says of a pair of terms that take two names crosswise.
+enum Reading {
+    /// This name is the length: the term that takes it as its angle is the wrong one.
+    Length(Leaf),
+    /// Nothing tells which is the length, or what tells contradicts itself.
+    Tie,
+    /// Both names are angles: each term's length is to be a length, told at each.
+    Neither,
+}
+
+/// What the rest of the mechanism, the two terms `pair` set aside, says of their `names` (the
+/// first the length of the first term, the angle of the other): which is the length, if
+/// anything tells, by one and the same evidence whether the terms are bare or expressions.
+fn settle(lw: &Lowerer, angles: &Angles, pair: [usize; 2], [a, b]: [Leaf; 2]) -> Reading {
+    let products = pair.iter().filter_map(|&k| lw.named_lengths.get(k)).flat_map(|t| t.products);
+    let avoided: Vec<NodeId> = angles.set_aside.iter().copied().chain(products).collect();
+    let arguments = multiples::trig_arguments_avoiding(&lw.graph, &angles.roots, &avoided);
+    let (ka, kb) = (kind_apart(lw, angles, a, &arguments), kind_apart(lw, angles, b, &arguments));
+    let first_right = ka == Some(Kind::Length) || kb == Some(Kind::Angle);
+    let second_right = ka == Some(Kind::Angle) || kb == Some(Kind::Length);
+    match (first_right, second_right) {
+        (true, false) => Reading::Length(a),
+        (false, true) => Reading::Length(b),
+        _ if ka == Some(Kind::Angle) && kb == Some(Kind::Angle) => Reading::Neither,
+        _ => Reading::Tie,
+    }
+}
+
+/// The kind of a name by the rest of the mechanism.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Angle,
+    Length,
+}
+
+/// What the rest of the mechanism says `leaf` is (`arguments`: the trigonometric arguments
+/// found with the terms in question set aside): an angle as [`Angles::apart`] finds one, a
+/// length if written in a coordinate of a position or in a sum beside a length; `None` where
+/// nothing tells, or both are told.
+fn kind_apart(lw: &Lowerer, angles: &Angles, leaf: Leaf, arguments: &[NodeId]) -> Option<Kind> {
+    let angle = angles.apart(&lw.graph, leaf, arguments);
+    let length = in_a_position(lw, leaf) || beside_a_length(lw, angles, leaf);
+    match (angle, length) {
+        (true, false) => Some(Kind::Angle),
+        (false, true) => Some(Kind::Length),
+        _ => None,
+    }
+}
+
+/// The tie of the terms `[i, j]`, `i < j`, that take `names` crosswise, told at the first.
+fn pair_tie(lw: &Lowerer, [i, j]: [usize; 2], [a, b]: [Leaf; 2]) -> Option<syn::Error> {
     let name = |l: Leaf| leaf_name(lw, l).unwrap_or_default();
-    let (length, angle) = (name(length), name(angle));
-    let error = match j < i {
-        true => tie(m, t, true, [&angle, &length]),
-        false => tie(t, m, true, [&length, &angle]),
-    };
-    Some(Direct::Tie { mirror: j, at: i.min(j), error })
+    let (t, m) = (lw.named_lengths.get(i)?, lw.named_lengths.get(j)?);
+    Some(tie(t, m, [&name(a), &name(b)]))
 }
 
 /// Whether `leaf` is in a sum, difference or `eq` whose other side holds a name placed as a
