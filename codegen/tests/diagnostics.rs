@@ -1415,3 +1415,24 @@ fn a_pair_in_opposite_roles_written_twice_is_one_tie() {
     );
     assert_eq!(e, [tie_message("l @ psi", "psi @ l", ["l", "psi"])], "{e:#?}");
 }
+
+/// `psi @ l` beside `th @ psi`, `th` an angle elsewhere: swapping `th @ psi` makes every term
+/// right (`psi` a length, turned by `l` and by `th`), where swapping `psi @ l` leaves `th`, an
+/// angle, as a length. Both were told in one order. The term whose length is an angle by the
+/// rest of the mechanism is judged first, so its swap alone is told, in either order.
+#[test]
+fn one_swap_that_mends_two_terms_is_the_one_error() {
+    for angle in ["th", "phi"] {
+        let (a, b) = ("psi @ l", format!("{angle} @ psi"));
+        for (first, second) in [(a, b.as_str()), (b.as_str(), a)] {
+            let e = errors(&format!(
+                "pub struct S {{ params r, l, e, th; input phi; unknowns psi, x;
+                 loop c: r @ phi == (x, e) + {first}; point p = (x, 0) + {second}; output s = sin(th); }}"
+            ));
+            assert_eq!(e.len(), 1, "{first}, {second}: {e:#?}");
+            let told = format!("`{angle}` is an angle");
+            let swap = format!("the two are swapped; write `psi @ {angle}`");
+            assert!(e[0].starts_with(&told) && e[0].ends_with(&swap), "{first}, {second}: {e:#?}");
+        }
+    }
+}

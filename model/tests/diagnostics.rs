@@ -397,7 +397,7 @@ fn a_swapped_polar_term_is_refused_at_run_time() {
 /// on a line of its own: the two terms start at line 5, column 35, and line 6, column 24.
 fn two_terms(first: &str, second: &str, more: &str) -> String {
     format!(
-        "pub struct SliderCrank {{\n    params r = 1, l = 3, e = 0.5;\n    input phi;\n    unknowns psi, x = 3;\n    \
+        "pub struct SliderCrank {{\n    params r = 1, l = 3, e = 0.5, th = 0.2;\n    input phi;\n    unknowns psi, x = 3;\n    \
          loop oab: r @ phi == (x, e) + {first};\n    point p = (x, 0) + {second};\n    {more}\n}}\n"
     )
 }
@@ -405,7 +405,7 @@ fn two_terms(first: &str, second: &str, more: &str) -> String {
 /// Two polar terms of two names in opposite roles, bare or expressions, are judged at run time
 /// as by the macro: a tie at the first where nothing else tells which name is the length (a bare
 /// term beside an expression too), else the wrong term alone, in either order, whatever tells
-/// (a sine, a coordinate).
+/// (a sine, a coordinate); and one swap that mends two terms is the one error.
 #[test]
 fn polar_terms_in_opposite_roles_are_judged_at_run_time_as_by_the_macro() {
     let (at_loop, at_point) = ((5, 35), (6, 24));
@@ -418,6 +418,8 @@ fn polar_terms_in_opposite_roles_are_judged_at_run_time_as_by_the_macro() {
         ("(2 * psi) @ l", "0.5 * l @ psi", "output lean = sin(psi);", at_loop, "write `l @ (2 * psi)`"),
         ("l @ psi", "psi @ l", "point q = (x, 2 * l);", at_point, "write `l @ psi`"),
         ("psi @ l", "l @ psi", "point q = (x, 2 * l);", at_loop, "write `l @ psi`"),
+        ("psi @ l", "th @ psi", "output lean = sin(th);", at_point, "write `psi @ th`"),
+        ("th @ psi", "psi @ l", "output lean = sin(th);", at_loop, "write `psi @ th`"),
     ] {
         let text = two_terms(first, second, more);
         let Err(ReadError::Rejected(d)) = Model::read("opposite.kl", &text) else { panic!("accepted: {text}") };

@@ -14,7 +14,9 @@
 //! are angles, a mix of an angle and a length if not, a length in neither case: no swap is
 //! told, but a length to write and, if they are lengths, an angle for them. A length that is
 //! an angle only by such terms (`l` by `psi @ l`) where its own angle is one (`l @ psi`, with
-//! `0.5 * l @ psi` elsewhere) is right as written: the other term is told, and only it.
+//! `0.5 * l @ psi` elsewhere) is right as written: the other term is told, and only it; so is
+//! one whose length is an angle only by a term found swapped (`psi @ l` beside `th @ psi`, `th`
+//! an angle elsewhere: the one swap of `th @ psi` mends both).
 //!
 //! Two terms that take two names in opposite roles, bare or expressions alike (`l @ psi`
 //! beside `psi @ l`, `(2 * psi) @ l` or `0.5 * l @ psi` beside either), are judged together
@@ -211,7 +213,10 @@ enum Direct {
 /// The errors for the terms whose length is a bare name or written in degrees, each with the
 /// index of its term, but those `told` already. They are judged before the expressions: the
 /// angle of a term found swapped (`l` in `psi @ l`) is an angle only by that mistake, and
-/// makes nothing else one.
+/// makes nothing else one. Those whose length is an angle by the rest of the mechanism go
+/// first: the angle of such a term found swapped is then a length for a term whose length is
+/// an angle only by it (`psi` in `psi @ l` beside `th @ psi`, `th` an angle elsewhere: one swap
+/// mends both), which is right as written.
 fn direct_terms(
     lw: &Lowerer,
     angles: &mut Angles,
@@ -220,13 +225,32 @@ fn direct_terms(
 ) -> Vec<(usize, syn::Error)> {
     // Found at the first term with an angle to judge: most mechanisms have none.
     let mut arguments = None;
+    let direct = lw.named_lengths.iter().enumerate().filter(|(i, t)| is_direct(t) && !told.contains(i));
+    let (later, first): (Vec<_>, Vec<_>) =
+        direct.partition(|&(_, t)| angle_only_by_suspects(lw, angles, t, suspects, &mut arguments));
     let mut found = Vec::new();
-    for (i, t) in lw.named_lengths.iter().enumerate().filter(|(i, t)| is_direct(t) && !told.contains(i)) {
+    for (i, t) in first.into_iter().chain(later) {
         if let Direct::Error(e) = direct_verdict(lw, angles, t, suspects, &mut arguments) {
             found.push((i, e));
         }
     }
     found
+}
+
+/// Whether the length of `t` is a name that is an angle only by the `suspects`, the terms whose
+/// length is an angle (`psi` in `psi @ l`, by `th @ psi`). `arguments` is as for
+/// [`direct_verdict`].
+fn angle_only_by_suspects(
+    lw: &Lowerer,
+    angles: &Angles,
+    t: &NamedLength,
+    suspects: &[NodeId],
+    arguments: &mut Option<Vec<NodeId>>,
+) -> bool {
+    let Some(leaf) = t.leaf.filter(|_| !t.degrees && suspects.contains(&t.products[0])) else { return false };
+    let arguments =
+        arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(&lw.graph, &angles.roots, suspects));
+    !angles.apart(&lw.graph, leaf, arguments)
 }
 
 /// The verdict on the term `t`, of a bare name or degrees. `arguments` holds the
