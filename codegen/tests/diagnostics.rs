@@ -1436,3 +1436,24 @@ fn one_swap_that_mends_two_terms_is_the_one_error() {
         }
     }
 }
+
+/// A term whose length and angle are one name (`beta @ beta`) was told to swap the two, which
+/// writes the same term. The fix is a length where the length belongs, whether the name is an
+/// angle elsewhere or only by this term.
+#[test]
+fn a_term_of_one_name_as_length_and_angle_is_told_to_write_a_length() {
+    for elsewhere in ["", " output s = sin(beta);"] {
+        let e = errors(&format!(
+            "pub struct S {{ params a, c, d; input phi; unknowns beta, gamma;
+             loop abcd: a @ phi + beta @ beta == (d, 0) + c @ gamma;{elsewhere} }}"
+        ));
+        assert_eq!(e.len(), 1, "{elsewhere}: {e:#?}");
+        assert!(!e[0].contains("write `beta @ beta`"), "{elsewhere}: {e:#?}");
+        assert!(
+            e[0].ends_with(
+                "swapping the two cannot help; write a length there, such as `r * beta` for the arc a radius `r` rolls"
+            ),
+            "{elsewhere}: {e:#?}"
+        );
+    }
+}

@@ -428,3 +428,15 @@ fn polar_terms_in_opposite_roles_are_judged_at_run_time_as_by_the_macro() {
         assert!(d.items[0].message.contains(told), "{text}\n{d}");
     }
 }
+
+/// `beta @ beta`, one name as the length and the angle, is told to write a length, as by the
+/// macro, not to swap the two (which writes the same term).
+#[test]
+fn a_term_of_one_name_as_length_and_angle_is_told_a_length_at_run_time() {
+    let text = "pub struct S {\n    params a, c, d;\n    input phi;\n    unknowns beta, gamma;\n    \
+                loop abcd: a @ phi + beta @ beta == (d, 0) + c @ gamma;\n}\n";
+    let Err(ReadError::Rejected(d)) = Model::read("same.kl", text) else { panic!("accepted: {text}") };
+    let got: Vec<(usize, usize)> = d.items.iter().map(|i| (i.line, i.column)).collect();
+    assert_eq!(got, [(5, 26)], "{d}");
+    assert!(d.items[0].message.contains("swapping the two cannot help; write a length there"), "{d}");
+}

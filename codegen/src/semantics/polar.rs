@@ -50,7 +50,7 @@
 
 use super::dynamics::{leaf_name, sets_to_angle};
 use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair};
-use crate::graph::dag::{Graph, Leaf, NodeId};
+use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
 use std::collections::{HashMap, HashSet};
@@ -334,6 +334,10 @@ fn fix_by_angle(
     arguments: &[NodeId],
     if_length: fn(&NamedLength) -> String,
 ) -> String {
+    // `beta @ beta`: the swap is the term itself, whatever the name is elsewhere.
+    if t.leaf.is_some_and(|l| lw.graph.op(t.angle_node) == Op::Leaf(l)) {
+        return both_angles(t);
+    }
     match angle_of(lw, angles, t, arguments) {
         AngleOf::Angle => both_angles(t),
         AngleOf::Mixed { angle, others } => mixed(lw, angles, t, angle, others),
