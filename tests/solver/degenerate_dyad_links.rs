@@ -196,3 +196,84 @@ fn a_link_below_the_rounding_is_singular_beyond_the_closed_forms_sizes() {
         }
     }
 }
+
+/// A solve's position `[beta, gamma]` and, for the analogs, their velocity analogs in the
+/// same order.
+type Solve = Result<([f64; 2], Option<[f64; 2]>), Error>;
+
+/// A dyad whose triangle closes exactly with one link `short` of the others, in every
+/// declaration: the slide dyad at `s = 1` on a frame of 2 (its coupler of 1 from the slide ends
+/// on the rocker's pivot, or its rocker of 1 from the pivot ends on the slide) and the four-bar
+/// of unit crank on a frame of 2 at a crank angle of 0 (the coupler of 1 from the pin ends on
+/// the rocker's pivot, or the rocker of 1 on the pin), each with the short link the closed
+/// form's first (`first`) or second link, at size `scale`. Returns the solves (closed form's
+/// analogs, positions; the Newton twin's analogs, positions), each in the order `[beta,
+/// gamma]`, and the worst miss of the loop over 64 angles of the short link relative to its
+/// size, computed here in plain f64.
+fn exact_triangle_solves(slide: bool, short_coupler: bool, first: bool, short: f64, scale: f64) -> ([Solve; 4], f64) {
+    let cfg = NewtonConfig::default();
+    let (long, short) = (scale, short * scale);
+    let (b, c) = if short_coupler { (short, long) } else { (long, short) };
+    let d = 2.0 * scale;
+    // The pin (the slide's centre or the crank's end) at `(scale, 0)`, the pivot at `(d, 0)`: the
+    // long link along the frame between them, the short link between its end and the other.
+    let pin = [scale, 0.0];
+    let worst = if short_coupler {
+        worst_miss(pin, b, [d - c, 0.0], pin[0] + b + c + d, 64)
+    } else {
+        worst_miss([d, 0.0], c, [pin[0] + b, 0.0], pin[0] + b + c + d, 64)
+    };
+    // Each mechanism's unknowns (and guesses) in its own order, from and to `[beta, gamma]`.
+    let order = |q: [f64; 2]| if first == short_coupler { q } else { [q[1], q[0]] };
+    macro_rules! solves {
+        ($closed:expr, $newton:expr, $x:expr, $guess:expr) => {{
+            let (x, guess) = ([$x], order($guess));
+            let analogs = |k: kinloop::Kin<2, 1, _>| (order(k.q), Some(order(k.dq.map(|row| row[0]))));
+            let positions = |p: ([f64; 2], _)| (order(p.0), None);
+            [
+                $closed.kinematics_flat(&x, &guess, &cfg).map(analogs),
+                $closed.position_flat(&x, &guess, &cfg).map(positions),
+                $newton.kinematics_flat(&x, &guess, &cfg).map(analogs),
+                $newton.position_flat(&x, &guess, &cfg).map(positions),
+            ]
+        }};
+    }
+    let a = scale;
+    let solves = match (slide, first == short_coupler) {
+        (true, true) => solves!(SlideDyad { b, c, d }, SlideDyadNewton { b, c, d }, scale, [0.1, 3.0]),
+        (true, false) => {
+            solves!(SlideDyadGammaFirst { b, c, d }, SlideDyadGammaFirstNewton { b, c, d }, scale, [0.1, 3.0])
+        }
+        (false, true) => solves!(BetaFirst { a, b, c, d }, BetaFirstNewton { a, b, c, d }, 0.0, [0.5, 1.5]),
+        (false, false) => solves!(GammaFirst { a, b, c, d }, GammaFirstNewton { a, b, c, d }, 0.0, [0.5, 1.5]),
+    };
+    (solves, worst)
+}
+
+const SOLVES: [&str; 4] =
+    ["closed form's analogs", "closed form's positions", "Newton's analogs", "Newton's positions"];
+
+/// The Newton twin of a dyad whose SECOND link (the closed form's) is below the rounding of its
+/// loop where the triangle closes exactly (see [`exact_triangle_solves`]): singular in block 0,
+/// as the closed form. The short link's Jacobian column is as long as the link at every angle,
+/// below the rounding of the loop's magnitude, so Newton's steps leave its angle near its guess
+/// and the iteration converges: the slide dyad with a rocker of `1e-20` was `Ok([1.9e-21,
+/// 2.95])`, the four-bar's rocker `1.4999999986` (its guess 1.5) with a velocity analog of
+/// `-1`, a value the data do not determine; each a position at `1e±200` as well.
+#[test]
+fn a_newton_link_below_the_rounding_that_stays_near_its_guess_is_singular() {
+    for slide in [true, false] {
+        for short_coupler in [true, false] {
+            for first in [true, false] {
+                for scale in [1.0, 1e-3, 1e3, 1e200, 1e-200] {
+                    let at = format!("slide {slide}, short coupler {short_coupler}, first {first}, scale {scale:e}");
+                    let (solves, worst) = exact_triangle_solves(slide, short_coupler, first, 1e-20, scale);
+                    assert!(worst <= 4.0 * f64::EPSILON, "{at}: every short-link angle misses by {worst:e} at most");
+                    for (r, what) in solves.into_iter().zip(SOLVES).skip(2) {
+                        assert_singular_block_0(r.map(|s| s.0), &format!("{at}: {what}"));
+                    }
+                }
+            }
+        }
+    }
+}

@@ -175,6 +175,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     /// the returned position) and undone if it made the residual worse. The iteration is
     /// borrowed, not moved into its end (its position is a kilobyte for a large block).
     #[allow(clippy::too_many_arguments)]
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // the negation is what sends NaN to the cold path
     #[inline(always)]
     pub(super) fn finish(
         &mut self,
@@ -205,8 +206,11 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
             // and the position is then only known to about the size of the last step.
             return Err(self.singular(rho, pivot, s, cfg));
         }
-        if step.is_finite() && step > 0.0 {
-            if pivot > cfg.singular_tol && step <= MAX_UNCHECKED_CORRECTION {
+        // NaN is no regular pivot.
+        if !(pivot > cfg.singular_tol) {
+            self.end_at_small_pivot(dz, step, rho, m, s, cfg, eval, mags, last)?;
+        } else if step.is_finite() && step > 0.0 {
+            if step <= MAX_UNCHECKED_CORRECTION {
                 // A quadratically converging iteration often ends with a correction at the
                 // rounding level: the last evaluation holds at `z` to rounding.
                 note(SolvePath::UncheckedCorrection);
@@ -236,6 +240,36 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         }
         last.keep(self.ev);
         Ok(Solved { z: self.z, iterations: self.iterations, evaluations: self.evaluations, residual: rho, termination })
+    }
+
+    /// The end of a converged iteration whose last factorisation's pivot is at most the
+    /// singular tolerance (or NaN): where an angle's Jacobian column is below the rounding of
+    /// every row ([`angle_not_determined`]) the block's singular position, as the closed form
+    /// reports a link below the rounding of its loop; otherwise the final correction `dz`
+    /// (scaled size `step`), checked by a new evaluation.
+    #[cold]
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn end_at_small_pivot(
+        &mut self,
+        dz: &[f64; N],
+        step: f64,
+        rho: f64,
+        m: &Magnitudes<N>,
+        s: &[f64; N],
+        cfg: &NewtonConfig,
+        eval: &mut impl FnMut(&[f64; N], &mut BlockEval<N, K, J>),
+        mags: &impl MagnitudesOf<N, K, J>,
+        last: &mut impl LastStep<N, K, J>,
+    ) -> Result<(), BlockFailure> {
+        if angle_not_determined(&self.ev.j, s, &m.unit, &m.turns) {
+            return Err(self.undetermined(rho, cfg));
+        }
+        if step.is_finite() && step > 0.0 {
+            last.forget();
+            self.checked_correction(dz, rho, cfg, eval, mags);
+        }
+        Ok(())
     }
 
     /// Whether the iteration ends on a root it reached only linearly (each step a fixed fraction
@@ -414,6 +448,26 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
     ) {
         evaluated_correction(&mut self.z, self.ev, dz, rho.max(cfg.residual_tol), eval, mags, &mut self.evaluations);
     }
+}
+
+/// Whether the Jacobian `j` has the column of an angle (`turns`) whose every entry, in the
+/// angle's unit (`unit`: a radian), is at most the rounding (`eps`) of its row's magnitude
+/// (`s`): the column of a link `l @ q` is the link's `l` turned a quarter, as long as the link
+/// at every angle, so such a link is below the rounding of its loop and every angle of it
+/// closes the loop to that rounding (the data do not determine it), or the angle's equations
+/// are stationary in it to rounding (a singular position). The factorisation the analogs use
+/// divides each column by its largest entry, which makes a uniformly short column as long as
+/// any, so its pivot ratio does not see it; that of the iteration's own steps (rows divided by
+/// their magnitudes) does, which is what sends a converged iteration here. A length's column
+/// (a direction, pure numbers) is never compared. NaN fails.
+fn angle_not_determined<const N: usize, J: BlockJacobian<N>>(
+    j: &J,
+    s: &[f64; N],
+    unit: &[f64; N],
+    turns: &[bool; N],
+) -> bool {
+    let j = j.to_dense();
+    (0..N).filter(|&c| turns[c]).any(|c| (0..N).all(|r| j[r][c].abs() * unit[c] <= f64::EPSILON * s[r]))
 }
 
 /// How far [`Iter::moved_angle_undetermined`] turns an angle from its root to probe whether

@@ -5,7 +5,7 @@
 use super::scales::BlockEval;
 use super::step::{MAX_UNCHECKED_CORRECTION, newton_step};
 use crate::solvers::jacobian::BlockJacobian;
-use crate::solvers::lu::{Lu, RowScales};
+use crate::solvers::lu::{Lu, RowScales, largest};
 
 /// How the correction at a converged iterate is computed: the step that ends the iteration,
 /// applied to the returned position. Only that step asks it (`correction`), so whatever it keeps
@@ -90,9 +90,10 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
             self.valid = false;
             return newton_step(ev, rows, unit, &mut ());
         }
-        refactor_columns(self.lu, ev);
+        let cols = refactor_columns(self.lu, ev);
         self.valid = true;
-        (self.lu.solve(ev.f.map(|v| -v)), self.lu.pivot_ratio())
+        let pivot = if short_column(&cols, rows, unit) { 0.0 } else { self.lu.pivot_ratio() };
+        (self.lu.solve(ev.f.map(|v| -v)), pivot)
     }
     #[inline(always)]
     fn forget(&mut self) {
@@ -118,8 +119,9 @@ impl<const N: usize, const K: usize> LastStep<N, K, [[f64; N]; N]> for KeptLu<'_
 /// zeroes its column (and is itself NaN there), a NaN entry stays NaN in the equilibrated
 /// matrix, and either way a pivot is zero or NaN and the pivot ratio 0 ([`Lu::refactor_cols`]);
 /// for a finite Jacobian they are `max_abs`'s, bit for bit.
+/// Returns the magnitudes, for [`short_column`].
 #[inline(always)]
-fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEval<N, K>) {
+fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEval<N, K>) -> [f64; N] {
     let cols: [f64; N] = core::array::from_fn(|c| {
         let mut m = 0.0f64;
         for row in &ev.j {
@@ -129,6 +131,27 @@ fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEv
         m
     });
     lu.refactor_cols(&ev.j, cols);
+    cols
+}
+
+/// Whether a column of largest magnitude `cols[c]`, in its unknown's unit `unit[c]`, is at
+/// most the rounding (`eps`) of the largest row magnitude: the cheap test (a multiplication and
+/// a comparison per column, one branch) that a correction's pivot must be taken for 0, so that
+/// the iteration's end judges the column in every row (`iterate::angle_not_determined`). The
+/// equilibration by the columns' magnitudes hides such a column (divided by its own tiny
+/// magnitude, it is as long as any): the column of a link `l @ q` below the rounding of its
+/// loop, whose angle the data do not determine (a rocker of `1e-20` whose pivot the coupler's
+/// end reaches was `1.4999999986` rad, near its guess). A length's column, a direction in the
+/// length's unit (its loop's magnitude), is about its rows' magnitudes and never passes. NaN
+/// fails.
+#[inline(always)]
+fn short_column<const N: usize>(cols: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> bool {
+    let floor = f64::EPSILON * largest(rows.s);
+    let mut short = false;
+    for c in 0..N {
+        short |= cols[c] * unit[c] <= floor;
+    }
+    short
 }
 
 #[cfg(test)]
