@@ -253,6 +253,32 @@ fn exact_triangle_solves(slide: bool, short_coupler: bool, first: bool, short: f
 const SOLVES: [&str; 4] =
     ["closed form's analogs", "closed form's positions", "Newton's analogs", "Newton's positions"];
 
+/// A dyad's FIRST link below the rounding of its loop where the triangle closes exactly (see
+/// [`exact_triangle_solves`]): every angle of it closes the loop within `4 eps` of its size, so
+/// the data do not determine it, and every solve, closed form and Newton twin, analogs and
+/// positions alone, reports the singular position of block 0, at sizes `1e-3`, 1 and `1e3` and
+/// beyond the closed forms' sizes (`1e±200`). Its equation's `d2` does not cancel there (the
+/// short link's own square is below the rounding of `c`, which is then exactly 0), so no cold
+/// branch of the closed form saw it: the slide dyad with a coupler of `1e-20` was `Ok([π/2,
+/// π])`, the coupler at right angles to nothing; the four-bar the same.
+#[test]
+fn a_first_link_below_the_rounding_on_an_exact_triangle_is_singular() {
+    for slide in [true, false] {
+        for short_coupler in [true, false] {
+            for short in [1e-20, 1e-100] {
+                for scale in [1.0, 1e-3, 1e3, 1e200, 1e-200] {
+                    let at = format!("slide {slide}, short coupler {short_coupler}, {short:e}, scale {scale:e}");
+                    let (solves, worst) = exact_triangle_solves(slide, short_coupler, true, short, scale);
+                    assert!(worst <= 4.0 * f64::EPSILON, "{at}: every short-link angle misses by {worst:e} at most");
+                    for (r, what) in solves.into_iter().zip(SOLVES) {
+                        assert_singular_block_0(r.map(|s| s.0), &format!("{at}: {what}"));
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// The Newton twin of a dyad whose SECOND link (the closed form's) is below the rounding of its
 /// loop where the triangle closes exactly (see [`exact_triangle_solves`]): singular in block 0,
 /// as the closed form. The short link's Jacobian column is as long as the link at every angle,

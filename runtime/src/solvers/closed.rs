@@ -679,8 +679,9 @@ pub fn dyad_of(dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result
         return dyad_of_rescaled(a, b, c, [e0, e1, l0, l1], flip, cfg);
     }
     let d2 = r2 - c * c;
-    // `root_offset`'s test with `d2` against its cancellation instead of zero: one test.
-    let d = if d2 >= r2 * DYAD_CANCELLED && r2 >= f64::MIN_POSITIVE {
+    // `root_offset`'s test with `d2` against its cancellation instead of zero, and the first
+    // link against the rounding of the second (`first_link_long`).
+    let d = if d2 >= r2 * DYAD_CANCELLED && r2 >= f64::MIN_POSITIVE && first_link_long(l0, l1) {
         root_offset_deferred(d2, flip)
     } else {
         dyad_offset_cancelled(d2, r2, c, [e0, e1, l0, l1], flip, cfg)?
@@ -688,10 +689,12 @@ pub fn dyad_of(dyad: [f64; 6], c: f64, flip: bool, cfg: &NewtonConfig) -> Result
     Ok(roots_of_offset(a, b, c, r2, d))
 }
 
-/// [`dyad_of`]'s root offset where `d2` is negative or cancelled: recomputed from the triangle
-/// ([`dyad_d2`]), then [`root_offset`]'s, circles that miss judged in the dyad's lengths
-/// ([`dyad_touching`]); a triangle that closes with a second link below the rounding of the
-/// others ([`second_turns_freely`]) singular as [`undetermined`].
+/// [`dyad_of`]'s root offset where `d2` is negative or cancelled, or the first link is not
+/// [`first_link_long`]: recomputed from the triangle ([`dyad_d2`]), then [`root_offset`]'s,
+/// circles that miss judged in the dyad's lengths ([`dyad_touching`]); a triangle that closes
+/// with a second link below the rounding of the others ([`second_turns_freely`]) singular as
+/// [`undetermined`], and one with a first link below it ([`short_link`]) too, by way of
+/// [`dyad_d2`], which takes it for no triangle.
 #[cold]
 #[inline(never)]
 fn dyad_offset_cancelled(
@@ -707,7 +710,8 @@ fn dyad_offset_cancelled(
     if d2 >= 0.0 && r2 >= f64::MIN_POSITIVE {
         // A triangle that closes, but with a link below the rounding of the others (a rocker
         // of 1e-20 whose pivot the coupler's end reaches): its angle would be the rounding's.
-        // Tested here alone: such a triangle's `d2` always cancels.
+        // Tested here alone: such a triangle's `d2` cancels where the short link is the second,
+        // and a first one fails `first_link_long`.
         if second_turns_freely(links) || short_link(links) {
             return Err(undetermined(cfg));
         }
@@ -744,11 +748,35 @@ fn dyad_of_rescaled(
 /// (2.9e-4 rad at 2e6, 2.6e-10 at 2e3). From the lengths, the error is that of the data's own
 /// rounding. Near a limit position of the dyad (`θ` tiny as well) the same form is the more
 /// accurate. `d2` as it is where it is NaN or the subtraction kept its digits.
+///
+/// A first link below the rounding of the others (`short_link`) is recomputed too (it fails
+/// `first_link_long`), for the negative `d2` of no triangle: where such a triangle closes
+/// exactly, the short link's square is below the rounding of `c`, which is then exactly `0`,
+/// and `d2 = a² + b²` does not cancel, so the caller's root (`Ok([π/2, π])` for the slide dyad
+/// with a coupler of `1e-20`: the coupler square to nothing) came from no cold branch.
 #[inline(always)]
 pub fn dyad_d2(d2: f64, r2: f64, links: [f64; 4]) -> f64 {
-    // A NaN fails the test and keeps `d2`.
-    if d2.abs() < r2 * DYAD_CANCELLED { dyad_d2_stable(links) } else { d2 }
+    // A NaN `d2` fails the first test and keeps itself; a NaN length recomputes a NaN.
+    if d2.abs() < r2 * DYAD_CANCELLED || !first_link_long(links[2], links[3]) { dyad_d2_stable(links) } else { d2 }
 }
+
+/// Whether a dyad's first link, of squared length `l0_sq`, is above [`FIRST_LINK_SHORT`] times
+/// its second (`l1_sq`), the regular steps' one test of a short first link (a multiplication
+/// and a comparison): where it fails the cold paths judge the lengths ([`short_link`]). A first
+/// link that [`short_link`] holds below the rounding in a triangle that closes (its offset
+/// `|e|` at most `l0 + l1`, so its size `l0 + l1 + |e|` at most `2 (l0 + l1)`) is at most `2
+/// eps / (1 - 2 eps)` times the second link, and its square within `4.000001 eps²` of the
+/// second's square: the bound of `16 eps²` holds it with the rounding of the squares to spare.
+/// A NaN fails (the cold paths see it, as they do the NaN `d2` it makes); where the bound underflows
+/// (a second link below about `1e-139`) or overflows, the dyad's `a² + b²` (a fourth power of its
+/// lengths) has left the normal range, which the callers test first, and which rescales.
+#[inline(always)]
+fn first_link_long(l0_sq: f64, l1_sq: f64) -> bool {
+    l0_sq > FIRST_LINK_SHORT * l1_sq
+}
+
+/// `16 eps²`: see [`first_link_long`].
+const FIRST_LINK_SHORT: f64 = 16.0 * f64::EPSILON * f64::EPSILON;
 
 /// `|d2| / r2` below which [`dyad_d2`] recomputes: the direct form's angle is then off by more
 /// than about `500 eps`.
@@ -983,13 +1011,14 @@ pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
 /// [`dyad_of`] without its test: the same formulas, NaN where it fails.
 #[inline(always)]
 pub fn dyad_of_deferred(dyad: [f64; 6], c: f64, flip: bool) -> (f64, f64) {
-    let [a, b, ..] = dyad;
+    let [a, b, _, _, l0, l1] = dyad;
     let r2 = a * a + b * b;
     // Where the checked step rescales (`a² + b²` not normal), or recomputes a cancelled `d2`
-    // from the triangle, a NaN trace: the checked kernel then answers.
+    // from the triangle, or judges a short first link, a NaN trace: the checked kernel then
+    // answers.
     let r2 = if r2 >= f64::MIN_POSITIVE { r2 } else { f64::NAN };
     let d2 = r2 - c * c;
-    let d2 = if d2 >= r2 * DYAD_CANCELLED { d2 } else { f64::NAN };
+    let d2 = if d2 >= r2 * DYAD_CANCELLED && first_link_long(l0, l1) { d2 } else { f64::NAN };
     roots_of_offset(a, b, c, r2, root_offset_deferred(d2, flip))
 }
 
