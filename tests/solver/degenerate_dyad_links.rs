@@ -8,7 +8,7 @@
 
 use crate::support::assert_singular_block_0;
 use kinloop::{Error, Mechanism, NewtonConfig};
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 with_newton_twin! {
     /// A four-bar whose unknowns are declared rocker first: the closed form's dyad takes the
@@ -301,5 +301,198 @@ fn a_newton_link_below_the_rounding_that_stays_near_its_guess_is_singular() {
                 }
             }
         }
+    }
+}
+
+/// The positions and velocity analogs `[beta, gamma, dbeta, dgamma]` of [`exact_triangle_solves`]'s
+/// dyads with the short link `short` of the others (the scale 1), built here in plain f64 from
+/// the isosceles triangle of the long link, the long centres' offset and the short link (apex
+/// angle `t = 2 asin(short / 2)`), on the branch whose short-link angle has the sign `side`;
+/// the analogs by Cramer's rule from the loop's derivative `P' + i b beta' e^(i beta) = i c
+/// gamma' e^(i gamma)` (`P'` the pin's velocity: `(1, 0)` for the slide, `(0, 1)` for the crank
+/// at 0).
+fn exact_triangle_reference(slide: bool, short_coupler: bool, short: f64, side: f64) -> [f64; 4] {
+    let t = 2.0 * (short / 2.0).asin();
+    let (beta, gamma, b, c) = if short_coupler {
+        // The rocker of 1 from `(2, 0)` to near the pin `(1, 0)`, the coupler across the base.
+        (side * (FRAC_PI_2 - t / 2.0), side * (PI - t), short, 1.0)
+    } else {
+        // The coupler of 1 from the pin to near the pivot, the rocker across the base.
+        (side * t, side * (FRAC_PI_2 + t / 2.0), 1.0, short)
+    };
+    let w = if slide { [1.0, 0.0] } else { [0.0, 1.0] };
+    let u = [-b * beta.sin(), b * beta.cos()];
+    let v = [c * gamma.sin(), -c * gamma.cos()];
+    let cross = |p: [f64; 2], q: [f64; 2]| p[0] * q[1] - p[1] * q[0];
+    let det = cross(u, v);
+    let minus_w = [-w[0], -w[1]];
+    [beta, gamma, cross(minus_w, v) / det, cross(u, minus_w) / det]
+}
+
+/// No false alarm: the dyads of [`exact_triangle_solves`] with the short link `1e-8` or `1e-12`
+/// of the others, far above the rounding of the loop, every declaration, at sizes `1e-3`, 1
+/// and `1e3`: every solve is a position, the closed form's and the Newton twin's, and it is the
+/// triangle built in plain f64 ([`exact_triangle_reference`], either branch), its analogs
+/// Cramer's rule's. The short link's direction is the difference of positions known to the
+/// rounding of the size, so its angle is known to about `eps / short` (and the analogs, which
+/// divide by it, to that relative error): within `64 eps / short`.
+#[test]
+fn a_link_above_the_rounding_on_an_exact_triangle_is_solved() {
+    let mut worst = 0.0f64;
+    for slide in [true, false] {
+        for short_coupler in [true, false] {
+            for first in [true, false] {
+                for short in [1e-8, 1e-10, 1e-12] {
+                    for scale in [1.0, 1e-3, 1e3] {
+                        let at = format!(
+                            "slide {slide}, short coupler {short_coupler}, first {first}, {short:e}, scale {scale:e}"
+                        );
+                        let (solves, _) = exact_triangle_solves(slide, short_coupler, first, short, scale);
+                        let closed_tol = 64.0 * f64::EPSILON / short;
+                        // Newton stops where the loop misses by at most the residual tolerance
+                        // of its rows' magnitude (4), which a turn `t` of the short link makes
+                        // at least `(2 / pi) short t`: `t` up to `(pi / 2) sqrt(2) 4 tol / short`
+                        // (8.9 tol / short: at `1e-12`, any angle).
+                        let newton_tol = closed_tol + 16.0 * NewtonConfig::default().residual_tol / short;
+                        // At `1e-12` every angle of the short link meets Newton's residual test
+                        // (a chord of at most `2e-12` within `1e-12` of the loop's magnitude 4),
+                        // which cannot tell them apart (it reports the singular position where
+                        // the angle moved turns away): only the closed form is held there. At
+                        // `1e-10` Newton may stop on its step test, whose residual floor is
+                        // `1e3` times the tolerance (a rocker at `3.139` rad for `pi / 2`, the
+                        // loop open by `2.5e-11` of its size): held to a position, not to the
+                        // triangle's.
+                        let newton = if short >= 1e-8 {
+                            Some(newton_tol)
+                        } else if short >= 1e-10 {
+                            Some(f64::INFINITY)
+                        } else {
+                            None
+                        };
+                        let tols = [Some(closed_tol), Some(closed_tol), newton, newton];
+                        for ((r, what), tol) in solves.into_iter().zip(SOLVES).zip(tols) {
+                            let Some(tol) = tol else { continue };
+                            let (q, dq) = r.unwrap_or_else(|e| panic!("{at}: {what}: {e}"));
+                            // The branch of the short link's angle.
+                            let side = if short_coupler { q[1].sin() } else { q[0].sin() }.signum();
+                            let want = exact_triangle_reference(slide, short_coupler, short, side);
+                            for k in 0..2 {
+                                // Angles compared modulo a turn (`pi + 1e-12` is `-pi + 1e-12`).
+                                let err = ((q[k] - want[k] + PI).rem_euclid(TAU) - PI).abs();
+                                worst = worst.max(err / tol);
+                                assert!(err <= tol, "{at}: {what}: q[{k}] {} against {}", q[k], want[k]);
+                            }
+                            // Dimensionless analogs: per unit crank angle, or per slide over the size.
+                            for (k, v) in dq.into_iter().flatten().enumerate() {
+                                let got = if slide { v * scale } else { v };
+                                let err = (got - want[2 + k]).abs() / want[2 + k].abs().max(1.0);
+                                worst = worst.max(err / tol);
+                                assert!(err <= tol, "{at}: {what}: dq[{k}] {got} against {}", want[2 + k]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    println!("worst error over its bound: {worst:e}");
+}
+
+/// The worst miss of the loop `a @ phi + b @ beta == (d, 0) + c @ gamma` at `q = [beta, gamma]`,
+/// relative to its magnitude `a + b + c + d` (plain f64).
+fn four_bar_miss([a, b, c, d]: [f64; 4], phi: f64, [beta, gamma]: [f64; 2]) -> f64 {
+    let x = a * phi.cos() + b * beta.cos() - d - c * gamma.cos();
+    let y = a * phi.sin() + b * beta.sin() - c * gamma.sin();
+    x.abs().max(y.abs()) / (a + b + c + d)
+}
+
+/// The worst miss of the class IV group's two loops at `q = [th1, th2, psi1, psi2]` (the
+/// fixture's declaration, in plain f64), relative to each loop's magnitude.
+fn class_four_miss(m: &kinloop_fixtures::ClassFour, phi: f64, [th1, th2, psi1, psi2]: [f64; 4]) -> f64 {
+    let p = |l: f64, t: f64| [l * t.cos(), l * t.sin()];
+    let a = p(m.oa, phi);
+    let (ac, cd, bd) = (p(m.ac, th1), p(m.cd, psi1), p(m.bd, th2));
+    let (ae, ef, bf) = (p(m.ae, th1 + m.alpha_a), p(m.ef, psi2), p(m.bf, th2 + m.alpha_b));
+    let b = [m.xb, m.yb];
+    let first = m.oa + m.ac + m.cd + m.bd + m.xb.abs() + m.yb.abs();
+    let second = m.oa + m.ae + m.ef + m.bf + m.xb.abs() + m.yb.abs();
+    (0..2)
+        .map(|k| {
+            let one = (a[k] + ac[k] + cd[k] - b[k] - bd[k]).abs() / first;
+            one.max((a[k] + ae[k] + ef[k] - b[k] - bf[k]).abs() / second)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// No false alarm on regular mechanisms: the Grashof four-bar (crank 1, coupler 3, rocker 2.5,
+/// frame 3.2), by its closed form and its Newton twin, and the fixtures' class IV group (a
+/// Newton block of four angles), over a turn of the input (72 steps, each from the last) at
+/// sizes `1e-3`, 1 and `1e3`: every step is a position, its loops close within the residual
+/// tolerance of their magnitudes (computed here in plain f64), and its velocity analogs are
+/// the central differences of the positions (step `h = 1e-5`: truncation `h² q''' / 6`, about
+/// `2e-10` for third derivatives up to 10, and rounding `eps / h`, `2e-11`; held to `1e-8` of
+/// `max(1, |dq|)`).
+#[test]
+fn regular_mechanisms_are_solved_at_every_size() {
+    let cfg = NewtonConfig::default();
+    let h = 1e-5;
+    let fd_tol = 1e-8;
+    let close = |got: f64, fd: f64| (got - fd).abs() <= fd_tol * fd.abs().max(1.0);
+    for scale in [1.0, 1e-3, 1e3] {
+        let links = [1.0, 3.0, 2.5, 3.2].map(|l| l * scale);
+        let [a, b, c, d] = links;
+        let (closed, newton) = (BetaFirst { a, b, c, d }, BetaFirstNewton { a, b, c, d });
+        let (mut gc, mut gn) = ([0.5, 1.5], [0.5, 1.5]);
+        for i in 0..72 {
+            let phi = 0.3 + TAU * i as f64 / 72.0;
+            let at = format!("four-bar at size {scale:e}, phi {phi}");
+            let kc = closed.kinematics_flat(&[phi], &gc, &cfg).unwrap_or_else(|e| panic!("{at}: closed form: {e}"));
+            let kn = newton.kinematics_flat(&[phi], &gn, &cfg).unwrap_or_else(|e| panic!("{at}: Newton: {e}"));
+            for (k, what) in [(&kc, "closed form"), (&kn, "Newton")] {
+                assert!(four_bar_miss(links, phi, k.q) <= cfg.residual_tol, "{at}: {what}: {:?}", k.q);
+            }
+            let pos = |m: &dyn Fn(f64) -> [f64; 2]| [m(phi + h), m(phi - h)];
+            let [up, down] = pos(&|x| closed.position_flat(&[x], &kc.q, &cfg).unwrap().0);
+            for u in 0..2 {
+                let fd = (up[u] - down[u]) / (2.0 * h);
+                assert!(close(kc.dq[u][0], fd), "{at}: closed form's dq[{u}] {} against {fd}", kc.dq[u][0]);
+                assert!(close(kn.dq[u][0], fd), "{at}: Newton's dq[{u}] {} against {fd}", kn.dq[u][0]);
+            }
+            (gc, gn) = (kc.q, kn.q);
+        }
+        let m = class_four_at(scale);
+        let mut g = m.guess_flat(&[0.3]);
+        for i in 0..72 {
+            let phi = 0.3 + TAU * i as f64 / 72.0;
+            let at = format!("class IV at size {scale:e}, phi {phi}");
+            let k = m.kinematics_flat(&[phi], &g, &cfg).unwrap_or_else(|e| panic!("{at}: {e}"));
+            let q: [f64; 4] = k.q[..4].try_into().unwrap();
+            assert!(class_four_miss(&m, phi, q) <= cfg.residual_tol, "{at}: {q:?}");
+            let up = m.position_flat(&[phi + h], &k.q, &cfg).unwrap_or_else(|e| panic!("{at}: {e}")).0;
+            let down = m.position_flat(&[phi - h], &k.q, &cfg).unwrap_or_else(|e| panic!("{at}: {e}")).0;
+            for u in 0..4 {
+                let fd = (up[u] - down[u]) / (2.0 * h);
+                assert!(close(k.dq[u][0], fd), "{at}: dq[{u}] {} against {fd}", k.dq[u][0]);
+            }
+            g = k.q;
+        }
+    }
+}
+
+/// The fixtures' class IV group at size `k`: its lengths times `k`, its ternary links' angles
+/// as they are.
+fn class_four_at(k: f64) -> kinloop_fixtures::ClassFour {
+    let d = kinloop_fixtures::ClassFour::default();
+    kinloop_fixtures::ClassFour {
+        oa: d.oa * k,
+        xb: d.xb * k,
+        yb: d.yb * k,
+        ac: d.ac * k,
+        ae: d.ae * k,
+        bd: d.bd * k,
+        bf: d.bf * k,
+        cd: d.cd * k,
+        ef: d.ef * k,
+        ..d
     }
 }
