@@ -883,3 +883,135 @@ fn a_link_below_the_rounding_of_its_loop_is_singular_at_extreme_sizes_read_and_c
         }
     }
 }
+
+kinloop_fixtures::declare! {
+    /// Text of [`SlideDyadNewton`].
+    SLIDE_DYAD_NEWTON_TEXT => {
+        /// [`SlideDyad`] solved by Newton.
+        #[kinloop(newton)]
+        pub struct SlideDyadNewton {
+            params b, c, d;
+            input s;
+            unknowns beta = 0.1, gamma = 3.0;
+            loop sbcd: (s, 0) + b @ beta == (d, 0) + c @ gamma;
+        }
+    }
+}
+
+kinloop_fixtures::declare! {
+    /// Text of [`SlideDyadGammaFirst`].
+    SLIDE_GAMMA_FIRST_TEXT => {
+        /// [`SlideDyad`] declared rocker first: the closed form's dyad takes the rocker as its
+        /// first link.
+        pub struct SlideDyadGammaFirst {
+            params b, c, d;
+            input s;
+            unknowns gamma = 3.0, beta = 0.1;
+            loop sbcd: (s, 0) + b @ beta == (d, 0) + c @ gamma;
+        }
+    }
+}
+
+kinloop_fixtures::declare! {
+    /// Text of [`FourBarNewton`].
+    FOUR_BAR_NEWTON_TEXT => {
+        /// The fixtures' four-bar solved by Newton.
+        #[kinloop(newton)]
+        pub struct FourBarNewton {
+            params a, b, c, d;
+            input phi;
+            unknowns beta = 0.5, gamma = 1.5;
+            loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        }
+    }
+}
+
+/// The analogs' positions and the positions alone of `compiled` at `x` from `guess`, and the
+/// read model's of `text` with the parameters `params`, alike: the same positions to the bit,
+/// or the same error (the model's explained). Returns the compiled mechanism's two results.
+fn solved_alike<M: Mechanism<2, 1, NO>, const NO: usize>(
+    compiled: &M,
+    text: &str,
+    params: &[(&str, f64)],
+    x: f64,
+    guess: [f64; 2],
+    at: &str,
+) -> [Result<Vec<f64>, Error>; 2] {
+    let cfg = NewtonConfig::default();
+    let mut model = read(text);
+    set(&mut model, params);
+    let kin = compiled.kinematics_flat(&[x], &guess, &cfg).map(|k| k.q.to_vec());
+    let model_kin = model.kinematics(&[x], &guess, &cfg).map(|k| k.q.clone());
+    let pos = compiled.position_flat(&[x], &guess, &cfg).map(|(q, _)| q.to_vec());
+    let model_pos = model.positions(&[x], &guess, &cfg).map(|q| q.to_vec());
+    for (c, m, what) in [(&kin, model_kin, "analogs"), (&pos, model_pos, "positions")] {
+        match (c, m) {
+            (Ok(c), Ok(m)) => assert_eq!(c, &m, "{at}: {what}"),
+            (Err(c), Err(m)) => assert_eq!(&model.explain(&[x], &guess, &cfg, m), c, "{at}: {what}"),
+            (c, m) => panic!("{at}: {what}: compiled {c:?}, read {m:?}"),
+        }
+    }
+    [kin, pos]
+}
+
+/// A dyad whose triangle closes exactly with a link `1e-20` of the others
+/// (`tests/solver/degenerate_dyad_links.rs` computes the loop over 64 angles of it in plain
+/// f64: every one closes it within `4 eps` of its size), the closed form's FIRST link (the
+/// slide dyad at `s = 1` on a frame of 2 with a coupler, or declared rocker first a rocker, of
+/// `1e-20`; the four-bar of unit crank on a frame of 2 at 0 the same), or with the Newton twin
+/// either link: read and compiled alike, the singular position of block 0, at sizes `1e-3`, 1
+/// and `1e3`. Both solved the closed form's dyad to `[π/2, π]` (the short link at right angles
+/// to nothing: its `d2` does not cancel), and Newton to the short link's angle near its guess
+/// (the slide dyad's rocker at `2.95` rad). With a link of `1e-8` (far above the rounding) both
+/// are positions, the same to the bit.
+#[test]
+fn a_link_below_the_rounding_on_an_exact_triangle_is_singular_read_and_compiled_alike() {
+    for scale in [1.0, 1e-3, 1e3] {
+        for short in [1e-20, 1e-8] {
+            let (long, short_len) = (scale, short * scale);
+            let d = 2.0 * scale;
+            let mut results = Vec::new();
+            for short_coupler in [true, false] {
+                let (b, c) = if short_coupler { (short_len, long) } else { (long, short_len) };
+                let at = format!("short {short:e}, coupler short {short_coupler}, size {scale:e}");
+                let slide = [("b", b), ("c", c), ("d", d)];
+                let four = [("a", scale), ("b", b), ("c", c), ("d", d)];
+                let (sg, fg) = ([0.1, 3.0], [0.5, 1.5]);
+                // The closed forms with the short link first; Newton with it first and second.
+                if short_coupler {
+                    let m = SlideDyad { b, c, d };
+                    results.push(solved_alike(&m, SLIDE_DYAD_TEXT, &slide, scale, sg, &format!("{at}, slide")));
+                    let m = fx::FourBar { a: scale, b, c, d };
+                    results.push(solved_alike(&m, fx::FOUR_BAR_TEXT, &four, 0.0, fg, &format!("{at}, four-bar")));
+                } else {
+                    let m = SlideDyadGammaFirst { b, c, d };
+                    let at = format!("{at}, slide rocker first");
+                    results.push(solved_alike(&m, SLIDE_GAMMA_FIRST_TEXT, &slide, scale, [3.0, 0.1], &at));
+                    let m = GammaFirstFourBar { a: scale, b, c, d };
+                    let at = format!("{at}, four-bar rocker first");
+                    results.push(solved_alike(&m, GAMMA_FIRST_TEXT, &four, 0.0, [1.5, 0.5], &at));
+                }
+                let m = SlideDyadNewton { b, c, d };
+                results.push(solved_alike(
+                    &m,
+                    SLIDE_DYAD_NEWTON_TEXT,
+                    &slide,
+                    scale,
+                    sg,
+                    &format!("{at}, slide Newton"),
+                ));
+                let m = FourBarNewton { a: scale, b, c, d };
+                results.push(solved_alike(&m, FOUR_BAR_NEWTON_TEXT, &four, 0.0, fg, &format!("{at}, four-bar Newton")));
+            }
+            for r in results.into_iter().flatten() {
+                match r {
+                    Err(e @ Error::Singular { .. }) if short < 1e-16 => {
+                        assert_eq!(e.location().and_then(|l| l.block.as_ref()).map(|b| b.0), Some(0), "{e}");
+                    }
+                    Ok(_) if short > 1e-16 => {}
+                    other => panic!("short {short:e}, size {scale:e}: {other:?}"),
+                }
+            }
+        }
+    }
+}
