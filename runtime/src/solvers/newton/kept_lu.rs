@@ -5,7 +5,7 @@
 use super::scales::BlockEval;
 use super::step::{MAX_UNCHECKED_CORRECTION, newton_step};
 use crate::solvers::jacobian::BlockJacobian;
-use crate::solvers::lu::{Lu, RowScales, largest};
+use crate::solvers::lu::{Lu, RowScales};
 
 /// How the correction at a converged iterate is computed: the step that ends the iteration,
 /// applied to the returned position. Only that step asks it (`correction`), so whatever it keeps
@@ -135,23 +135,26 @@ fn refactor_columns<const N: usize, const K: usize>(lu: &mut Lu<N>, ev: &BlockEv
 }
 
 /// Whether a column of largest magnitude `cols[c]`, in its unknown's unit `unit[c]`, is at
-/// most the rounding (`eps`) of the largest row magnitude: the cheap test (a multiplication and
-/// a comparison per column, one branch) that a correction's pivot must be taken for 0, so that
-/// the iteration's end judges the column in every row (`iterate::angle_not_determined`). The
-/// equilibration by the columns' magnitudes hides such a column (divided by its own tiny
-/// magnitude, it is as long as any): the column of a link `l @ q` below the rounding of its
-/// loop, whose angle the data do not determine (a rocker of `1e-20` whose pivot the coupler's
-/// end reaches was `1.4999999986` rad, near its guess). A length's column, a direction in the
-/// length's unit (its loop's magnitude), is about its rows' magnitudes and never passes. NaN
-/// fails.
+/// most the rounding (`eps`) of the sum of the row magnitudes: the cheap test (a multiplication
+/// per column, a minimum, one comparison) that a correction's pivot must be taken for 0, so
+/// that the iteration's end judges the column against each row's magnitude
+/// (`iterate::angle_not_determined`, which implies this). The equilibration by the columns'
+/// magnitudes hides such a column (divided by its own tiny magnitude, it is as long as any):
+/// the column of a link `l @ q` below the rounding of its loop, whose angle the data do not
+/// determine (a rocker of `1e-20` whose pivot the coupler's end reaches was `1.4999999986` rad,
+/// near its guess). A length's column, a direction in the length's unit (its loop's
+/// magnitude), is about its rows' magnitudes and never passes. A NaN column is passed over
+/// (its factorisation's pivot ratio is 0 anyway).
 #[inline(always)]
 fn short_column<const N: usize>(cols: &[f64; N], rows: &RowScales<N>, unit: &[f64; N]) -> bool {
-    let floor = f64::EPSILON * largest(rows.s);
-    let mut short = false;
+    let mut sum = 0.0;
+    let mut least = f64::INFINITY;
     for c in 0..N {
-        short |= cols[c] * unit[c] <= floor;
+        sum += rows.s[c];
+        let v = cols[c] * unit[c];
+        least = if v < least { v } else { least };
     }
-    short
+    least <= f64::EPSILON * sum
 }
 
 #[cfg(test)]
