@@ -211,6 +211,21 @@ type Solve = Result<([f64; 2], Option<[f64; 2]>), Error>;
 /// gamma]`, and the worst miss of the loop over 64 angles of the short link relative to its
 /// size, computed here in plain f64.
 fn exact_triangle_solves(slide: bool, short_coupler: bool, first: bool, short: f64, scale: f64) -> ([Solve; 4], f64) {
+    exact_triangle_solves_from(slide, short_coupler, first, short, scale, false)
+}
+
+/// [`exact_triangle_solves`], with the long link's guess its angle in the triangle (`pi` for
+/// the rocker, `0` for the coupler) where `exact_long` holds: the guess then meets the residual
+/// tolerance (the short link's angle moves the loop by rounding only) and Newton corrects it
+/// once, without iterating.
+fn exact_triangle_solves_from(
+    slide: bool,
+    short_coupler: bool,
+    first: bool,
+    short: f64,
+    scale: f64,
+    exact_long: bool,
+) -> ([Solve; 4], f64) {
     let cfg = NewtonConfig::default();
     let (long, short) = (scale, short * scale);
     let (b, c) = if short_coupler { (short, long) } else { (long, short) };
@@ -239,13 +254,18 @@ fn exact_triangle_solves(slide: bool, short_coupler: bool, first: bool, short: f
         }};
     }
     let a = scale;
-    let solves = match (slide, first == short_coupler) {
-        (true, true) => solves!(SlideDyad { b, c, d }, SlideDyadNewton { b, c, d }, scale, [0.1, 3.0]),
-        (true, false) => {
-            solves!(SlideDyadGammaFirst { b, c, d }, SlideDyadGammaFirstNewton { b, c, d }, scale, [0.1, 3.0])
+    let guess = |mut g: [f64; 2]| {
+        if exact_long {
+            if short_coupler { g[1] = PI } else { g[0] = 0.0 }
         }
-        (false, true) => solves!(BetaFirst { a, b, c, d }, BetaFirstNewton { a, b, c, d }, 0.0, [0.5, 1.5]),
-        (false, false) => solves!(GammaFirst { a, b, c, d }, GammaFirstNewton { a, b, c, d }, 0.0, [0.5, 1.5]),
+        g
+    };
+    let (sg, fg) = (guess([0.1, 3.0]), guess([0.5, 1.5]));
+    let solves = match (slide, first == short_coupler) {
+        (true, true) => solves!(SlideDyad { b, c, d }, SlideDyadNewton { b, c, d }, scale, sg),
+        (true, false) => solves!(SlideDyadGammaFirst { b, c, d }, SlideDyadGammaFirstNewton { b, c, d }, scale, sg),
+        (false, true) => solves!(BetaFirst { a, b, c, d }, BetaFirstNewton { a, b, c, d }, 0.0, fg),
+        (false, false) => solves!(GammaFirst { a, b, c, d }, GammaFirstNewton { a, b, c, d }, 0.0, fg),
     };
     (solves, worst)
 }
@@ -285,15 +305,21 @@ fn a_first_link_below_the_rounding_on_an_exact_triangle_is_singular() {
 /// below the rounding of the loop's magnitude, so Newton's steps leave its angle near its guess
 /// and the iteration converges: the slide dyad with a rocker of `1e-20` was `Ok([1.9e-21,
 /// 2.95])`, the four-bar's rocker `1.4999999986` (its guess 1.5) with a velocity analog of
-/// `-1`, a value the data do not determine; each a position at `1e±200` as well.
+/// `-1`, a value the data do not determine; each a position at `1e±200` as well. From a guess
+/// whose long link is exact (it meets the tolerance: Newton corrects it once) as well.
 #[test]
 fn a_newton_link_below_the_rounding_that_stays_near_its_guess_is_singular() {
     for slide in [true, false] {
         for short_coupler in [true, false] {
             for first in [true, false] {
-                for scale in [1.0, 1e-3, 1e3, 1e200, 1e-200] {
-                    let at = format!("slide {slide}, short coupler {short_coupler}, first {first}, scale {scale:e}");
-                    let (solves, worst) = exact_triangle_solves(slide, short_coupler, first, 1e-20, scale);
+                for (scale, exact_long) in
+                    [1.0, 1e-3, 1e3, 1e200, 1e-200].into_iter().flat_map(|s| [(s, false), (s, true)])
+                {
+                    let at = format!(
+                        "slide {slide}, short coupler {short_coupler}, first {first}, scale {scale:e}, exact {exact_long}"
+                    );
+                    let (solves, worst) =
+                        exact_triangle_solves_from(slide, short_coupler, first, 1e-20, scale, exact_long);
                     assert!(worst <= 4.0 * f64::EPSILON, "{at}: every short-link angle misses by {worst:e} at most");
                     for (r, what) in solves.into_iter().zip(SOLVES).skip(2) {
                         assert_singular_block_0(r.map(|s| s.0), &format!("{at}: {what}"));
