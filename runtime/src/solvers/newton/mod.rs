@@ -51,7 +51,12 @@
 //! (`scales::unjudged`), tested only where the magnitudes are degenerate. Nor in magnitudes
 //! too large for `f64` (infinite where the terms overflowed: the same equation beyond about
 //! `1e154`): `BlockFailure::Overflow`, also where the residual itself overflowed, which is
-//! told there from an expression outside its domain (`scales::overflowed`).
+//! told there from an expression outside its domain (`scales::overflowed`). Nor a root with
+//! an angle whose Jacobian column is below the rounding of every row's magnitude (the column
+//! of a link `l @ q` is as long as the link at every angle: a link below the rounding of its
+//! loop, every angle of which closes it): the block's singular position, pivot ratio 0, as the
+//! closed form reports it (`iterate::angle_not_determined`; the analogs' factorisation, whose
+//! columns are divided by their magnitudes, does not see such a column, and tests it apart).
 //!
 //! **One factorisation at the root.** The last correction is made at the evaluation the block
 //! returns, whose Jacobian the analogs factorise. [`newton_keeping_lu`] makes that correction
