@@ -631,20 +631,7 @@ mod tests {
     fn report(starts: Range<usize>, candidates: Vec<Candidate>, search: &Search) -> SynthesisReport {
         let bounds = vec![(0.0, 1.0)];
         let candidates = distinct(candidates, &bounds, search.distinct, search.keep);
-        SynthesisReport {
-            variables: vec!["a".into()],
-            bounds,
-            candidates,
-            starts,
-            seeds: 0,
-            unassembled: 0,
-            refused: Vec::new(),
-            converged: 0,
-            valid: 0,
-            rejected: Rejections::default(),
-            evaluations: 0,
-            four_bar: false,
-        }
+        SynthesisReport { candidates, starts, ..SynthesisReport::new(vec!["a".into()], bounds) }
     }
 
     /// A near B, B near C, A not near C: the whole keeps A and C (B is A's duplicate), the part
