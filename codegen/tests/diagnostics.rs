@@ -1437,23 +1437,23 @@ fn one_swap_that_mends_two_terms_is_the_one_error() {
     }
 }
 
-/// A term whose length and angle are one name (`beta @ beta`) was told to swap the two, which
-/// writes the same term. The fix is a length where the length belongs, whether the name is an
-/// angle elsewhere or only by this term.
+/// A term whose length and angle are one name (`beta @ beta`, `(2 * beta) @ beta`) was told to
+/// swap the two, which keeps the name in both places. The fix is a length where the length
+/// belongs, whether the name is an angle elsewhere or only by this term.
 #[test]
 fn a_term_of_one_name_as_length_and_angle_is_told_to_write_a_length() {
-    for elsewhere in ["", " output s = sin(beta);"] {
-        let e = errors(&format!(
-            "pub struct S {{ params a, c, d; input phi; unknowns beta, gamma;
-             loop abcd: a @ phi + beta @ beta == (d, 0) + c @ gamma;{elsewhere} }}"
-        ));
-        assert_eq!(e.len(), 1, "{elsewhere}: {e:#?}");
-        assert!(!e[0].contains("write `beta @ beta`"), "{elsewhere}: {e:#?}");
-        assert!(
-            e[0].ends_with(
-                "swapping the two cannot help; write a length there, such as `r * beta` for the arc a radius `r` rolls"
-            ),
-            "{elsewhere}: {e:#?}"
-        );
+    for length in ["beta", "(2 * beta)"] {
+        for elsewhere in ["", " output s = sin(beta);"] {
+            let e = errors(&format!(
+                "pub struct S {{ params a, c, d; input phi; unknowns beta, gamma;
+                 loop abcd: a @ phi + {length} @ beta == (d, 0) + c @ gamma;{elsewhere} }}"
+            ));
+            assert_eq!(e.len(), 1, "{length}{elsewhere}: {e:#?}");
+            assert!(!e[0].contains("swapped"), "{length}{elsewhere}: {e:#?}");
+            let fix = format!(
+                "swapping the two cannot help; write a length there, such as `r * {length}` for the arc a radius `r` rolls"
+            );
+            assert!(e[0].ends_with(&fix), "{length}{elsewhere}: {e:#?}");
+        }
     }
 }

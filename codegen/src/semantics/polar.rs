@@ -334,8 +334,11 @@ fn fix_by_angle(
     arguments: &[NodeId],
     if_length: fn(&NamedLength) -> String,
 ) -> String {
-    // `beta @ beta`: the swap is the term itself, whatever the name is elsewhere.
-    if t.leaf.is_some_and(|l| lw.graph.op(t.angle_node) == Op::Leaf(l)) {
+    // `beta @ beta`, `(2 * beta) @ beta`: the swap keeps the name in both places, whatever
+    // it is elsewhere.
+    if let Op::Leaf(angle) = lw.graph.op(t.angle_node)
+        && lw.graph.leaves_of(&[t.node]).contains(&angle)
+    {
         return both_angles(t);
     }
     match angle_of(lw, angles, t, arguments) {
