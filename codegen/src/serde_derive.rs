@@ -250,13 +250,14 @@ fn container(attrs: &[Attribute]) -> syn::Result<Container> {
         attr.parse_nested_meta(|meta| {
             let text = || -> syn::Result<LitStr> { meta.value()?.parse() };
             if meta.path.is_ident("crate") {
+                // `LitStr::parse`: a string that is no path or type is an error at the string.
                 let lit = text()?;
-                c.krate = syn::parse_str::<syn::Path>(&lit.value()).map(|p| quote!(#p))?;
+                c.krate = lit.parse::<syn::Path>().map(|p| quote!(#p))?;
                 c.krate_text = lit.value();
             } else if meta.path.is_ident("from") {
-                c.from = Some(syn::parse_str(&text()?.value())?);
+                c.from = Some(text()?.parse()?);
             } else if meta.path.is_ident("into") {
-                c.into = Some(syn::parse_str(&text()?.value())?);
+                c.into = Some(text()?.parse()?);
             } else {
                 return Err(meta.error("kinloop's serde derives take `crate`, `from` and `into` on the struct"));
             }
