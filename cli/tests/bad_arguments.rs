@@ -227,6 +227,10 @@ fn bases(s: &Scratch) -> Vec<Base> {
                 ("--params", Params),
             ],
         ),
+        // A budget of 20,000 steps (the run takes about 35): the wrong values that ask for more
+        // steps than any budget holds (`--speed 1e30`, `--torque 1e30`, `--time 1e30`) spend it
+        // and are refused by the same message in a fiftieth of the time the default million
+        // took (about 50 s each in a debug build, half this test's time).
         base(
             &[
                 "simulate",
@@ -241,6 +245,8 @@ fn bases(s: &Scratch) -> Vec<Base> {
                 "0.02",
                 "--samples",
                 "5",
+                "--max-steps",
+                "20000",
             ],
             &[
                 ("--speed", Number),
