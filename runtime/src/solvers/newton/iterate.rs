@@ -208,7 +208,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         }
         // NaN is no regular pivot.
         if !(pivot > cfg.singular_tol) {
-            self.end_at_small_pivot(dz, step, rho, m, s, cfg, eval, mags, last)?;
+            self.end_at_small_pivot(dz, step, pivot, rho, m, s, cfg, eval, mags, last)?;
         } else if step.is_finite() && step > 0.0 {
             if step <= MAX_UNCHECKED_CORRECTION {
                 // A quadratically converging iteration often ends with a correction at the
@@ -242,11 +242,20 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         Ok(Solved { z: self.z, iterations: self.iterations, evaluations: self.evaluations, residual: rho, termination })
     }
 
-    /// The end of a converged iteration whose last factorisation's pivot is at most the
-    /// singular tolerance (or NaN): where an angle's Jacobian column is below the rounding of
-    /// every row ([`angle_not_determined`]) the block's singular position, as the closed form
+    /// The end of a converged iteration whose last factorisation's pivot (`pivot`) is at most
+    /// the singular tolerance (or NaN): where an angle's Jacobian column is below the rounding
+    /// of every row ([`angle_not_determined`]) the block's singular position, as the closed form
     /// reports a link below the rounding of its loop; otherwise the final correction `dz`
     /// (scaled size `step`), checked by a new evaluation.
+    ///
+    /// An iteration that stopped on the step test with its residual `rho` above the tolerance
+    /// (within [`FLOOR_FACTOR`] times it: no step decreased it further) and that still misses
+    /// the tolerance after that correction, on its guess's turns, has stalled at a singular
+    /// point of its equations, not reached a root: the block's singular position. (A dyad whose
+    /// rocker is `1e-10` of its loop stopped so with the rocker along the coupler, where the
+    /// exact triangle has it at right angles, `3.139` rad for `pi / 2`: the loop open by the
+    /// rocker's whole length, returned as a position.) The angles are moved to their guesses'
+    /// turns first, as [`Self::finish`] moves them, where a move may close the loop.
     #[cold]
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
@@ -254,6 +263,7 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         &mut self,
         dz: &[f64; N],
         step: f64,
+        pivot: f64,
         rho: f64,
         m: &Magnitudes<N>,
         s: &[f64; N],
@@ -268,6 +278,15 @@ impl<const N: usize, const K: usize, J: BlockJacobian<N>> Iter<'_, N, K, J> {
         if step.is_finite() && step > 0.0 {
             last.forget();
             self.checked_correction(dz, rho, cfg, eval, mags);
+        }
+        if rho > cfg.residual_tol {
+            if self.iterations > 1 && beyond_half_turn(&self.z, self.guess) {
+                self.back_to_guess_turns(rho, cfg, eval, mags, last)?;
+            }
+            let missed = residual_in(&self.ev.f, s);
+            if missed > cfg.residual_tol {
+                return Err(self.singular(missed, pivot, s, cfg));
+            }
         }
         Ok(())
     }
@@ -468,6 +487,12 @@ fn angle_not_determined<const N: usize, J: BlockJacobian<N>>(
 ) -> bool {
     let j = j.to_dense();
     (0..N).filter(|&c| turns[c]).any(|c| (0..N).all(|r| j[r][c].abs() * unit[c] <= f64::EPSILON * s[r]))
+}
+
+/// The largest residual of `f` in the row magnitudes `s` (a zero residual is zero over a zero
+/// magnitude; NaN is passed over: a residual that is not finite is reported otherwise).
+fn residual_in<const N: usize>(f: &[f64; N], s: &[f64; N]) -> f64 {
+    (0..N).map(|r| if f[r] == 0.0 { 0.0 } else { f[r].abs() / s[r] }).fold(0.0, f64::max)
 }
 
 /// How far [`Iter::moved_angle_undetermined`] turns an angle from its root to probe whether
