@@ -25,7 +25,9 @@ pub struct NewtonConfig {
     /// (default `1e-13`; valid range `[0, 1e-3]`), or when the residual stops decreasing; the
     /// step is then applied and the scaled residual must still be within
     /// `1000 * max(residual_tol, 16 eps)` (the rounding floor of rows whose terms are much
-    /// larger than their derivatives, e.g. near a limit position).
+    /// larger than their derivatives, e.g. near a limit position); where the Jacobian's pivot
+    /// ratio is at most [`NewtonConfig::singular_tol`], within `residual_tol` itself, or the
+    /// stop is a stall at the block's singular position.
     #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub step_tol: f64,
     /// Iteration cap per block (default `50`; at most `10_000`).

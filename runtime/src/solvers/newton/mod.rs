@@ -57,6 +57,9 @@
 //! loop, every angle of which closes it): the block's singular position, pivot ratio 0, as the
 //! closed form reports it (`iterate::angle_not_determined`; the analogs' factorisation, whose
 //! columns are divided by their magnitudes, does not see such a column, and tests it apart).
+//! Nor a point where the iteration stalled: stopped on the step test above the residual
+//! tolerance, at a Jacobian singular by the tolerance, and still above it after the final
+//! correction (`iterate::Iter::end_at_small_pivot`): the block's singular position.
 //!
 //! **One factorisation at the root.** The last correction is made at the evaluation the block
 //! returns, whose Jacobian the analogs factorise. [`newton_keeping_lu`] makes that correction
