@@ -36,7 +36,7 @@ else
     gear-lever-hand-sweep@20000 gear-lever-hand-sweep-checked@20000
     kernel-lane four-bar-kernel-lane gear-lever-kernel-lane
     kernel-lane@20000 four-bar-kernel-lane@20000 gear-lever-kernel-lane@20000
-    four-bar-lane-sketch four-bar-lane-sketch@20000
+    four-bar-lane-sketch four-bar-lane-sketch@20000 four-bar-lane-lean four-bar-lane-lean@20000
     sweep-for four-bar-sweep-for gear-lever-sweep-for
     class-four-hand class-four-hand-near class-four-point
     class-four-hand-taylor class-four-point-taylor class-four-sweep

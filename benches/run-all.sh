@@ -34,7 +34,7 @@ echo "run-all.sh: instruction counts" >&2
 benches/callgrind.sh >"$out/callgrind.txt"
 model/callgrind.sh >"$out/model.txt"
 benches/breakdown.sh sweep four-bar-sweep gear-lever-sweep point four-bar-point gear-lever-point \
-  kernel-lane four-bar-kernel-lane gear-lever-kernel-lane four-bar-lane-sketch \
+  kernel-lane four-bar-kernel-lane gear-lever-kernel-lane four-bar-lane-sketch four-bar-lane-lean \
   four-bar-hand-sweep-checked hand four-bar-hand gear-lever-hand ring-point >"$out/breakdown.txt"
 
 echo "run-all.sh: CPU time in paired rounds" >&2
@@ -47,7 +47,7 @@ benches/cputime.sh 9 hand:sweep-for:20000000 four-bar-hand:four-bar-sweep-for:20
 benches/cputime.sh 9 hand:hand-sweep-checked:20000000 four-bar-hand:four-bar-hand-sweep-checked:20000000 \
   gear-lever-hand:gear-lever-hand-sweep-checked:20000000 hand:kernel-lane:20000000 \
   four-bar-hand:four-bar-kernel-lane:20000000 gear-lever-hand:gear-lever-kernel-lane:20000000 \
-  four-bar-hand:four-bar-lane-sketch:20000000 >"$out/cputime-lanes.txt"
+  four-bar-hand:four-bar-lane-sketch:20000000 four-bar-hand:four-bar-lane-lean:20000000 >"$out/cputime-lanes.txt"
 benches/cputime.sh 7 class-four-hand:class-four-point:1000000 class-four-hand-near:class-four-point:1000000 \
   series-point:ring-point:100000 >"$out/cputime-newton.txt"
 

@@ -13,6 +13,13 @@
 //! increments' series, or by libm's `atan2` where an increment leaves the series' range), and
 //! the positions, from which the dyad's branch flag is taken at every sample as the kernel takes
 //! it from its guess.
+//!
+//! With `LEAN`, the two changes such a path could make to those pieces without changing its
+//! formulas, measured rather than estimated: the dyad's branch flag taken from the positions at
+//! the libm samples only and carried between them, and the analogs solved by the dyad's own
+//! determinant, `b c sin(beta - gamma)` (its columns' norms are the constant link lengths `b`
+//! and `c`, so `|sin(beta - gamma)|` is its pivot ratio), in place of `Inverse2`, whose pivot
+//! ratio divides by the columns' largest entries. The same numbers to the rounding.
 
 use kinloop::__gen::{Factor, Inverse2, dyad_of_deferred, reduce_turn, unwrap_to_turn};
 use kinloop_fixtures::FourBar;
@@ -22,9 +29,10 @@ use crate::hand_sweep::{HandSweep, Rotation, asin_series};
 use crate::kernel_lane::series_range;
 use crate::sweep::{Failed, Step};
 
-/// The four-bar's emitted sweep loop, sketched (see the module documentation).
+/// The four-bar's emitted sweep loop, sketched (see the module documentation); `LEAN` carries
+/// the branch flag and solves the analogs by the dyad's own determinant.
 #[derive(Clone, Debug)]
-pub struct FourBarLaneSketch<const TERMS: usize> {
+pub struct FourBarLaneSketch<const TERMS: usize, const LEAN: bool = false> {
     m: FourBar,
     turn: usize,
     period: usize,
@@ -39,9 +47,11 @@ pub struct FourBarLaneSketch<const TERMS: usize> {
     range: f64,
     /// `NewtonConfig::singular_tol`'s default, the kernel's end test of the pivot.
     singular_tol: f64,
+    /// The dyad's branch flag of the last libm sample (`LEAN`).
+    flip: bool,
 }
 
-impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
+impl<const TERMS: usize, const LEAN: bool> FourBarLaneSketch<TERMS, LEAN> {
     /// The sweep of `m` over turns of `turn` samples, libm every `period`, from the angles
     /// `guess` (the branch).
     pub fn new(m: FourBar, turn: usize, period: usize, guess: [f64; 2]) -> Self {
@@ -56,6 +66,7 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
             pivot: 0.0,
             range: series_range(TERMS),
             singular_tol: kinloop::NewtonConfig::default().singular_tol,
+            flip: false,
         }
     }
 
@@ -65,11 +76,20 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
     fn sample(
         &mut self,
         (sin_phi, cos_phi): (f64, f64),
+        sync: bool,
         angle: impl Fn(&Self, usize, f64, f64) -> f64,
     ) -> Result<(Step<2>, [f64; 6]), Failed> {
         let FourBar { a, b, c, d } = self.m;
-        // The dyad's branch flag from the previous positions, as the kernel's from its guess.
-        let flip = (b * -c) * reduce_turn(self.q[1] - self.q[0]) < 0.0;
+        // The dyad's branch flag from the previous positions, as the kernel's from its guess
+        // (`LEAN`: at the libm samples only, carried between them).
+        let flip = if !LEAN {
+            (b * -c) * reduce_turn(self.q[1] - self.q[0]) < 0.0
+        } else if sync {
+            self.flip = (b * -c) * reduce_turn(self.q[1] - self.q[0]) < 0.0;
+            self.flip
+        } else {
+            self.flip
+        };
         let a_cos_phi = a * cos_phi;
         let a_sin_phi = a * sin_phi;
         let neg_c = -c;
@@ -88,9 +108,10 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
         let b_cos_beta = b * cos_beta;
         let b_sin_beta = b * sin_beta;
         let j = [[-b_sin_beta, c * sin_gamma], [b_cos_beta, -(c * cos_gamma)]];
-        let lu = Inverse2::in_cols(&j, [[], []]);
+        let lu =
+            if LEAN { Analogs::dyad(&j, b * c, sin_beta * cos_gamma - cos_beta * sin_gamma) } else { Analogs::of(&j) };
         let neg_a_cos_phi = -a_cos_phi;
-        let [[dq_beta], [dq_gamma]] = lu.solve_cols([[a_sin_phi], [neg_a_cos_phi]]);
+        let [dq_beta, dq_gamma] = lu.solve([a_sin_phi, neg_a_cos_phi]);
         let t70 = sin_beta * dq_beta;
         let t72 = cos_beta * dq_beta;
         let t86 = dq_beta * t72;
@@ -99,7 +120,7 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
         let t95 = dq_gamma * (sin_gamma * dq_gamma);
         let r0 = -((neg_a_cos_phi - b * t86) + c * t94);
         let r1 = -((-a_sin_phi - b * t87) + c * t95);
-        let [[d2q_beta], [d2q_gamma]] = lu.solve_cols([[r0], [r1]]);
+        let [d2q_beta, d2q_gamma] = lu.solve([r0, r1]);
         let point = [
             a_cos_phi + b_cos_beta,
             a_sin_phi + b_sin_beta,
@@ -123,7 +144,7 @@ impl<const TERMS: usize> FourBarLaneSketch<TERMS> {
     }
 }
 
-impl<const TERMS: usize> HandSweep<2, 6> for FourBarLaneSketch<TERMS> {
+impl<const TERMS: usize, const LEAN: bool> HandSweep<2, 6> for FourBarLaneSketch<TERMS, LEAN> {
     fn turn(&self) -> usize {
         self.turn
     }
@@ -134,14 +155,14 @@ impl<const TERMS: usize> HandSweep<2, 6> for FourBarLaneSketch<TERMS> {
 
     #[inline(always)]
     fn sync(&mut self, x: f64) -> Result<(Step<2>, [f64; 6]), Failed> {
-        self.sample(x.sin_cos(), |lane, u, s, c| unwrap_to_turn(s.atan2(c), lane.q[u]))
+        self.sample(x.sin_cos(), true, |lane, u, s, c| unwrap_to_turn(s.atan2(c), lane.q[u]))
     }
 
     #[inline(always)]
     fn advance(&mut self) -> Result<(Step<2>, [f64; 6]), Failed> {
         let [s, c, ..] = self.sines;
         let sc = self.rotation.turn(s, c);
-        self.sample(sc, |lane, u, s, c| {
+        self.sample(sc, false, |lane, u, s, c| {
             let (s0, c0) = (lane.sines[2 + 2 * u], lane.sines[3 + 2 * u]);
             let x = s * c0 - c * s0;
             if x.abs() <= lane.range {
@@ -155,7 +176,7 @@ impl<const TERMS: usize> HandSweep<2, 6> for FourBarLaneSketch<TERMS> {
 
 /// The health the general sweep judges: the block's determinant sign and pivot ratio, as the
 /// kernel notes them.
-impl<const TERMS: usize> Branch<2, 6> for FourBarLaneSketch<TERMS> {
+impl<const TERMS: usize, const LEAN: bool> Branch<2, 6> for FourBarLaneSketch<TERMS, LEAN> {
     const ANGLES: [bool; 2] = [true, true];
 
     #[inline(always)]
@@ -165,5 +186,64 @@ impl<const TERMS: usize> Branch<2, 6> for FourBarLaneSketch<TERMS> {
 
     fn judged_units(&self) -> [f64; 2] {
         [1.0; 2]
+    }
+}
+
+/// The sketch's 2x2 analog block: kinloop's `Inverse2`, or (`LEAN`) the dyad's own inverse by
+/// its determinant `b c sin(beta - gamma)`, its pivot ratio `|sin(beta - gamma)|`.
+enum Analogs {
+    Inverse(Inverse2),
+    Dyad { j: [[f64; 2]; 2], inv_det: f64, pivot: f64, negative: bool },
+}
+
+impl Analogs {
+    #[inline(always)]
+    fn of(j: &[[f64; 2]; 2]) -> Self {
+        Analogs::Inverse(Inverse2::in_cols(j, [[], []]))
+    }
+
+    /// The block `j` of a dyad whose columns' norms multiply to `lengths` (`b c`), with
+    /// `sin(beta - gamma) = sin_diff`: `det j = lengths sin_diff`.
+    #[inline(always)]
+    fn dyad(j: &[[f64; 2]; 2], lengths: f64, sin_diff: f64) -> Self {
+        let det = lengths * sin_diff;
+        Analogs::Dyad { j: *j, inv_det: 1.0 / det, pivot: sin_diff.abs(), negative: det < 0.0 }
+    }
+
+    /// Solves `j z = r` (Cramer's rule by the reciprocal determinant, for the dyad).
+    #[inline(always)]
+    fn solve(&self, r: [f64; 2]) -> [f64; 2] {
+        match self {
+            Analogs::Inverse(lu) => {
+                let [[z0], [z1]] = lu.solve_cols([[r[0]], [r[1]]]);
+                [z0, z1]
+            }
+            Analogs::Dyad { j, inv_det, .. } => {
+                [(r[0] * j[1][1] - j[0][1] * r[1]) * inv_det, (j[0][0] * r[1] - r[0] * j[1][0]) * inv_det]
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn pivot_ratio(&self) -> f64 {
+        match self {
+            Analogs::Inverse(lu) => lu.pivot_ratio(),
+            // NaN (a failed root) is 0, as `Inverse2` reports it.
+            Analogs::Dyad { pivot, .. } => {
+                if pivot.is_nan() {
+                    0.0
+                } else {
+                    *pivot
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn negative_det(&self) -> bool {
+        match self {
+            Analogs::Inverse(lu) => lu.negative_det(),
+            Analogs::Dyad { negative, .. } => *negative,
+        }
     }
 }

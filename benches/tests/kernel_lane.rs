@@ -84,10 +84,21 @@ fn the_lane_computes_the_kernel_s_numbers() {
 
 #[test]
 fn the_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
+    lane_sketch_computes_the_kernel_s_numbers::<false>();
+}
+
+/// The lean sketch too (branch flag carried, analogs by the dyad's determinant): the same
+/// numbers to the rounding.
+#[test]
+fn the_lean_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
+    lane_sketch_computes_the_kernel_s_numbers::<true>();
+}
+
+fn lane_sketch_computes_the_kernel_s_numbers<const LEAN: bool>() {
     let cfg = NewtonConfig::default();
     for (turn, steps) in [(720, 3 * 720), (20_000, 4000)] {
         let guess: [f64; 2] = FOUR_BAR.solve(0.0).unwrap().q.into();
-        let lane = Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS>::new(FOUR_BAR, turn, PERIOD, guess));
+        let lane = Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS, LEAN>::new(FOUR_BAR, turn, PERIOD, guess));
         let mut prev = FOUR_BAR.kinematics_flat(&[0.0], &guess, &cfg).unwrap();
         let dev = hand_sweep_fold(lane, steps, [0.0f64; 2], |dev, x, got, point| {
             let want = FOUR_BAR.kinematics_flat(&[x], &prev.q, &cfg).unwrap();
@@ -111,6 +122,6 @@ fn the_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
             widen(dev, positions, analogs)
         })
         .unwrap();
-        check(&format!("four-bar lane sketch at {turn}"), dev, ANALOG_TOL);
+        check(&format!("four-bar lane sketch (lean {LEAN}) at {turn}"), dev, ANALOG_TOL);
     }
 }

@@ -19,7 +19,8 @@
 //!   no check and no judgment (`kinloop_bench::kernel_lane`): `kernel-lane`,
 //!   `four-bar-kernel-lane`, `gear-lever-kernel-lane`;
 //! * the four-bar's sweep loop sketched as the macro would emit it, with the sweep's checks
-//!   (`kinloop_bench::lane_sketch`): `four-bar-lane-sketch`;
+//!   (`kinloop_bench::lane_sketch`): `four-bar-lane-sketch`, and `four-bar-lane-lean` with the
+//!   branch flag carried and the analogs by the dyad's own determinant;
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton),
 //!   `class-four-hand-near` (the same with each iterate's sines and cosines rotated from the
 //!   previous iterate's, as kinloop's Newton blocks do), `class-four-point`,
@@ -167,6 +168,9 @@ fn main() {
         "four-bar-sweep-for" => sweep_for_of(&four, gf, steps),
         "four-bar-lane-sketch" => {
             hand_sweep_of(Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS>::new(four, turn(), PERIOD, gf)), steps)
+        }
+        "four-bar-lane-lean" => {
+            hand_sweep_of(Checked::new(FourBarLaneSketch::<FOUR_BAR_TERMS, true>::new(four, turn(), PERIOD, gf)), steps)
         }
         "four-bar-kernel-lane" => lane_of::<_, 2, 2, FOUR_BAR_TERMS>(&four, gf, steps),
         "four-bar-scan" => lean::scan_designs(

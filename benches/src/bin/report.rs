@@ -229,7 +229,7 @@ struct CountRow {
     target: Option<f64>,
 }
 
-const COUNT_ROWS: [CountRow; 32] = [
+const COUNT_ROWS: [CountRow; 34] = [
     CountRow {
         what: "rhombic drive, point step, against the hand closed form with libm's `sincos(phi1 + gamma)`",
         variant: "point",
@@ -371,6 +371,18 @@ const COUNT_ROWS: [CountRow; 32] = [
     CountRow {
         what: "four-bar with its coupler point, its sweep loop sketched as the macro would emit it (the kernel's formulas and run-time pieces, the sweep's checks), 20,000 steps a turn",
         variant: "four-bar-lane-sketch@20000",
+        reference: "four-bar-hand@20000",
+        target: None,
+    },
+    CountRow {
+        what: "four-bar with its coupler point, the sketched sweep loop with the branch flag carried and the analogs by the dyad's own determinant",
+        variant: "four-bar-lane-lean",
+        reference: "four-bar-hand",
+        target: None,
+    },
+    CountRow {
+        what: "four-bar with its coupler point, the sketched sweep loop with the branch flag carried and the analogs by the dyad's own determinant, 20,000 steps a turn",
+        variant: "four-bar-lane-lean@20000",
         reference: "four-bar-hand@20000",
         target: None,
     },
