@@ -14,14 +14,17 @@
 //! the positions, from which the dyad's branch flag is taken at every sample as the kernel takes
 //! it from its guess.
 //!
-//! With `LEAN`, the two changes such a path could make to those pieces without changing its
+//! With `LEAN`, the changes such a path could make to those pieces without changing its
 //! formulas, measured rather than estimated: the dyad's branch flag taken from the positions at
-//! the libm samples only and carried between them, and the analogs solved by the dyad's own
-//! determinant, `b c sin(beta - gamma)` (its columns' norms are the constant link lengths `b`
-//! and `c`, so `|sin(beta - gamma)|` is its pivot ratio), in place of `Inverse2`, whose pivot
-//! ratio divides by the columns' largest entries. The same numbers to the rounding.
+//! the libm samples only and carried between them; the circles intersected by the plain root
+//! formula (`dyad_roots_deferred`, without the dyad's cancellation test, which a path that hands
+//! every sample near a limit position to the general step need not make); and the analogs solved
+//! by the dyad's own determinant, `b c sin(beta - gamma)` (its columns' norms are the constant
+//! link lengths `b` and `c`, so `|sin(beta - gamma)|` is its pivot ratio), in place of
+//! `Inverse2`, whose pivot ratio divides by the columns' largest entries. The same numbers to
+//! the rounding.
 
-use kinloop::__gen::{Factor, Inverse2, dyad_of_deferred, reduce_turn, unwrap_to_turn};
+use kinloop::__gen::{Factor, Inverse2, dyad_of_deferred, dyad_roots_deferred, reduce_turn, unwrap_to_turn};
 use kinloop_fixtures::FourBar;
 
 use crate::hand_check::Branch;
@@ -30,7 +33,8 @@ use crate::kernel_lane::series_range;
 use crate::sweep::{Failed, Step};
 
 /// The four-bar's emitted sweep loop, sketched (see the module documentation); `LEAN` carries
-/// the branch flag and solves the analogs by the dyad's own determinant.
+/// the branch flag, intersects the circles by the plain root formula and solves the analogs by
+/// the dyad's own determinant.
 #[derive(Clone, Debug)]
 pub struct FourBarLaneSketch<const TERMS: usize, const LEAN: bool = false> {
     m: FourBar,
@@ -97,7 +101,10 @@ impl<const TERMS: usize, const LEAN: bool> FourBarLaneSketch<TERMS, LEAN> {
         let l1 = neg_c * neg_c;
         let cc = 0.5 * ((l1 - b * b) - (t53 * t53 + a_sin_phi * a_sin_phi));
         let dyad = [b * t53, b * a_sin_phi, t53, a_sin_phi, b * b, l1];
-        let (cos_beta, sin_beta) = dyad_of_deferred(dyad, cc, flip);
+        // `LEAN`: the circles intersected by the plain root formula (`a² + b² - c²` as it comes),
+        // without the dyad's cancellation test and its triangle of the lengths.
+        let (cos_beta, sin_beta) =
+            if LEAN { dyad_roots_deferred(dyad[0], dyad[1], cc, flip) } else { dyad_of_deferred(dyad, cc, flip) };
         let vx = t53 + b * cos_beta;
         let vy = a_sin_phi + b * sin_beta;
         let il1 = -1.0 / l1;

@@ -87,8 +87,8 @@ fn the_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
     lane_sketch_computes_the_kernel_s_numbers::<false>();
 }
 
-/// The lean sketch too (branch flag carried, analogs by the dyad's determinant): the same
-/// numbers to the rounding.
+/// The lean sketch too (branch flag carried, the plain root formula, analogs by the dyad's
+/// determinant): the same numbers to the rounding.
 #[test]
 fn the_lean_four_bar_lane_sketch_computes_the_kernel_s_numbers() {
     lane_sketch_computes_the_kernel_s_numbers::<true>();

@@ -20,7 +20,7 @@
 //!   `four-bar-kernel-lane`, `gear-lever-kernel-lane`;
 //! * the four-bar's sweep loop sketched as the macro would emit it, with the sweep's checks
 //!   (`kinloop_bench::lane_sketch`): `four-bar-lane-sketch`, and `four-bar-lane-lean` with the
-//!   branch flag carried and the analogs by the dyad's own determinant;
+//!   branch flag carried, the plain root formula and the analogs by the dyad's own determinant;
 //! * class IV block (Newton): `class-four-hand` (the hand-written Newton),
 //!   `class-four-hand-near` (the same with each iterate's sines and cosines rotated from the
 //!   previous iterate's, as kinloop's Newton blocks do), `class-four-point`,

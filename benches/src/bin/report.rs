@@ -375,13 +375,13 @@ const COUNT_ROWS: [CountRow; 34] = [
         target: None,
     },
     CountRow {
-        what: "four-bar with its coupler point, the sketched sweep loop with the branch flag carried and the analogs by the dyad's own determinant",
+        what: "four-bar with its coupler point, the sketched sweep loop with the branch flag carried, the plain root formula and the analogs by the dyad's own determinant",
         variant: "four-bar-lane-lean",
         reference: "four-bar-hand",
         target: None,
     },
     CountRow {
-        what: "four-bar with its coupler point, the sketched sweep loop with the branch flag carried and the analogs by the dyad's own determinant, 20,000 steps a turn",
+        what: "four-bar with its coupler point, the sketched sweep loop with the branch flag carried, the plain root formula and the analogs by the dyad's own determinant, 20,000 steps a turn",
         variant: "four-bar-lane-lean@20000",
         reference: "four-bar-hand@20000",
         target: None,
