@@ -410,7 +410,7 @@ pub use kinloop_macros::mechanism;
 #[doc(no_inline)]
 pub use kinloop_runtime::nalgebra;
 pub use kinloop_runtime::{
-    AtSingular, BlockInfo, BlockNames, ColumnKey, Compiled, CompiledSens, Configured, DetSigns, Error, Event,
+    AtSingular, BlockInfo, BlockNames, ColumnKey, Compiled, CompiledSens, Computed, Configured, DetSigns, Error, Event,
     EventKind, Extreme, Extremum, ExtremumOf, FlatMotion, Health, Jac, Kernel, Kin, LENGTH_UNIT, Location, Mechanism,
     Named, NamedSensitivities, NewtonConfig, NewtonStop, Number, Quantity, QuantityKind, Reach, Sens, SensKernel,
     SensState, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepOf, SweepResult, SweepStop, Table,

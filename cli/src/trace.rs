@@ -10,7 +10,7 @@ use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
 use kinloop_runtime::{
-    Error, Event, Kernel, Number, QuantityKind, SweepConfig, Table, TraceConfig, TracedOf, TracedPointOf,
+    Computed, Error, Event, Kernel, Number, QuantityKind, SweepConfig, Table, TraceConfig, TracedOf, TracedPointOf,
 };
 use std::path::Path;
 
@@ -167,7 +167,7 @@ fn output_not_finite(model: &mut Model, x: &[f64], k: usize, kinds: &[QuantityKi
     // The location is the model's as a kernel (the one its solves report), whatever the
     // configuration: the trace already ran, so every parameter has a value.
     let e = match model.kernel(SweepConfig::default()) {
-        Ok(kernel) => Error::Domain { what: "output", name, at: kernel.location(x, None) },
+        Ok(kernel) => Error::Domain { what: Computed::Output, name, at: kernel.location(x, None) },
         Err(e) => e,
     };
     solve_failed(&mechanism, e, kinds, deg)

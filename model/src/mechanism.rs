@@ -10,7 +10,9 @@ use kinloop_runtime::generated::{
     BlockFailure, block_error, first_bad_value, first_non_finite_state, imprecise_param, turns_culprit, turns_error,
 };
 use kinloop_runtime::paths::sweep::SweepOf;
-use kinloop_runtime::{BlockInfo, Error, Kernel, Location, NewtonConfig, Quantity, QuantityKind, SweepConfig};
+use kinloop_runtime::{
+    BlockInfo, Computed, Error, Kernel, Location, NewtonConfig, Quantity, QuantityKind, SweepConfig,
+};
 use std::borrow::Cow;
 use std::cell::RefCell;
 
@@ -227,7 +229,7 @@ impl Info {
                         Some(row) => {
                             let equations = self.block_infos.get(block).map(|b| b.equations.clone());
                             let name = equations.and_then(|e| e.get(row).cloned()).unwrap_or(Cow::Borrowed("?"));
-                            Error::Domain { what: "equation", name, at }
+                            Error::Domain { what: Computed::Equation, name, at }
                         }
                         None => Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at },
                     }
@@ -250,8 +252,8 @@ impl Info {
             StepError::NonFinite => self.bad_values(m, x, guess).unwrap_or_else(|| {
                 let st = m.state();
                 let parts = [&st.q[..], &st.dq, &st.d2q, &st.out, &st.dout, &st.d2out];
-                let (what, index) = first_non_finite_state(parts, st.x.len()).unwrap_or(("value", 0));
-                let names = if what.starts_with("output") { &self.outputs } else { &self.unknowns };
+                let (what, index) = first_non_finite_state(parts, st.x.len()).unwrap_or((Computed::Value, 0));
+                let names = if what.is_output() { &self.outputs } else { &self.unknowns };
                 let name = names.get(index).map_or(Cow::Borrowed("?"), |n| Cow::Owned(n.clone()));
                 Error::Domain { what, name, at: self.location(x, None) }
             }),

@@ -91,7 +91,7 @@ fn a_non_finite_output_is_named_as_the_compiled_one_names_it() {
     let compiled = Reciprocal::default();
     let mut model = read(RECIPROCAL_TEXT);
     let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
-    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
+    assert!(matches!(e, Error::Domain { what: kinloop::Computed::Output, .. }), "{e:?}");
     assert_eq!(name_of(&e), "k");
     assert!(matches!(name_of(&e), Cow::Owned(_)));
     eprintln!("{e}");
@@ -101,10 +101,10 @@ fn a_non_finite_output_is_named_as_the_compiled_one_names_it() {
     // At 0 the output is 0, its analog is not: the first bad value in the compiled order
     // (positions, their analogs, outputs, their analogs).
     let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
-    assert!(matches!(e, Error::Domain { what: "output velocity analog", .. }), "{e:?}");
+    assert!(matches!(e, Error::Domain { what: kinloop::Computed::OutputVelocityAnalog, .. }), "{e:?}");
     assert_eq!(name_of(&e), "root");
     let e = same_error(&compiled, &mut model, [-0.5], compiled.guess_flat(&[-0.5]));
-    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
+    assert!(matches!(e, Error::Domain { what: kinloop::Computed::Output, .. }), "{e:?}");
     assert_eq!(name_of(&e), "root");
 }
 
@@ -115,7 +115,7 @@ fn an_output_beyond_the_range_of_f64_is_named_with_its_cause() {
     let compiled = Growth::default();
     let mut model = read(GROWTH_TEXT);
     let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
-    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
+    assert!(matches!(e, Error::Domain { what: kinloop::Computed::Output, .. }), "{e:?}");
     assert_eq!(name_of(&e), "growth");
     let message = e.to_string();
     assert!(message.contains("the range of f64") && message.contains("exp of an argument above 709.78"), "{message}");
@@ -146,7 +146,7 @@ fn a_value_left_out_of_the_finiteness_sum_still_fails_the_step() {
     let guess = compiled.guess_flat(&[0.0]);
     assert!(matches!(model.kinematics(&[0.0], &guess, &cfg), Err(StepError::NonFinite)));
     let e = same_error(&compiled, &mut model, [0.0], guess);
-    assert!(matches!(e, Error::Domain { what: "output velocity analog", .. }), "{e:?}");
+    assert!(matches!(e, Error::Domain { what: kinloop::Computed::OutputVelocityAnalog, .. }), "{e:?}");
 
     assert!(left_out(RECIPROCAL_TEXT, |p| p.outputs[0]));
     let compiled = Reciprocal::default();
@@ -154,7 +154,7 @@ fn a_value_left_out_of_the_finiteness_sum_still_fails_the_step() {
     let guess = compiled.guess_flat(&[0.0]);
     assert!(matches!(model.kinematics(&[0.0], &guess, &cfg), Err(StepError::NonFinite)));
     let e = same_error(&compiled, &mut model, [0.0], guess);
-    assert!(matches!(e, Error::Domain { what: "output", .. }), "{e:?}");
+    assert!(matches!(e, Error::Domain { what: kinloop::Computed::Output, .. }), "{e:?}");
 }
 
 /// A sweep through the input where an output divides by zero stops there with the same error
@@ -170,7 +170,10 @@ fn a_sweep_through_a_division_by_zero_fails_alike() {
     let r_err = model.sweep(&from, &to, 5, &guess).unwrap().filter_map(Result::err).next().expect("fails");
     same(&c_err, &r_err);
     let Error::Domain { what, name, at } = &r_err else { panic!("{r_err:?}") };
-    assert_eq!((*what, name.as_ref(), &at.inputs[..]), ("output", "k", &[(Cow::Borrowed("phi"), 0.0)][..]));
+    assert_eq!(
+        (*what, name.as_ref(), &at.inputs[..]),
+        (kinloop::Computed::Output, "k", &[(Cow::Borrowed("phi"), 0.0)][..])
+    );
 }
 
 /// An angle guessed a billion radians out: the closed form's root on the guess's turn is too
@@ -326,7 +329,7 @@ fn a_non_finite_linear_block_names_its_equation() {
     let compiled = Linear::default();
     let mut model = read(LINEAR_TEXT);
     let e = same_error(&compiled, &mut model, [-1.0], [1.0]);
-    assert!(matches!(e, Error::Domain { what: "equation", .. }), "{e:?}");
+    assert!(matches!(e, Error::Domain { what: kinloop::Computed::Equation, .. }), "{e:?}");
     assert_eq!(name_of(&e), "e");
     // At 0 the coefficient is 0: singular.
     let e = same_error(&compiled, &mut model, [0.0], [1.0]);
@@ -408,7 +411,7 @@ fn a_non_finite_output_at_a_rescued_position_is_named_at_every_scale() {
         let mut model = read(RECIPROCAL_TEXT);
         set(&mut model, &[("a", k), ("b", 3.0 * k), ("c", 2.5 * k), ("d", 3.2 * k)]);
         let e = same_error(&compiled, &mut model, [0.0], compiled.guess_flat(&[0.0]));
-        assert!(matches!(e, Error::Domain { what: "output", .. }), "size {k:e}: {e:?}");
+        assert!(matches!(e, Error::Domain { what: kinloop::Computed::Output, .. }), "size {k:e}: {e:?}");
         assert_eq!(name_of(&e), "k", "size {k:e}");
         assert_eq!(e.location().map(|at| at.inputs.clone()), Some(vec![("phi".into(), 0.0)]), "size {k:e}");
     }

@@ -9,6 +9,9 @@ use std::fmt;
 
 use crate::events::Location;
 
+mod computed;
+pub use computed::Computed;
+
 /// What kind of value was not finite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -116,8 +119,8 @@ pub enum Error {
          norm or of a vector's angle where the vector is zero, or exp of an argument above 709.78)"
     )]
     Domain {
-        /// `"equation"`, `"position"`, `"velocity analog"`, `"output"`, ...
-        what: &'static str,
+        /// Which kind of value: an equation, a position, an analog, an output, ...
+        what: Computed,
         /// Name of the equation, unknown or output column.
         name: Cow<'static, str>,
         /// Where.
@@ -155,7 +158,7 @@ pub enum Error {
         at: Box<Location>,
     },
     /// A result overflowed although every value given was finite: accelerations for input
-    /// speeds near the largest `f64`, or (`what` is `"equation"`) the terms of an equation, too
+    /// speeds near the largest `f64`, or (`what` is [`Computed::Equation`]) the terms of an equation, too
     /// large to be evaluated in `f64`, the counterpart of [`Error::Underflow`]. An equation's
     /// magnitude (the size of its terms, see `NewtonConfig::residual_tol`) overflowed to
     /// infinity, so its residual cannot be judged relative to it; where the residual overflowed
@@ -164,11 +167,12 @@ pub enum Error {
     /// outside its domain ([`Error::Domain`]). Typical of an equation of squared lengths (a rod
     /// length written `(x - a)^2 + ... == l^2`) with lengths beyond about `1e153`: the
     /// mechanism in a larger unit (smaller numbers) solves.
-    #[error("the {what} `{name}` overflows {at}: {}", overflow_cause(what))]
+    #[error("the {what} `{name}` overflows {at}: {}", overflow_cause(*what))]
     Overflow {
-        /// `"equation"`, `"velocity"`, `"acceleration"`, `"output velocity"` or `"output
-        /// acceleration"`.
-        what: &'static str,
+        /// [`Computed::Equation`], or a true motion: [`Computed::Velocity`],
+        /// [`Computed::Acceleration`], [`Computed::OutputVelocity`] or
+        /// [`Computed::OutputAcceleration`].
+        what: Computed,
         /// Name of the equation, unknown or output column.
         name: Cow<'static, str>,
         /// Where.
@@ -425,8 +429,8 @@ impl Error {
 
 /// Why a result overflowed, by what it is: an equation's terms (see [`Error::Overflow`]), or a
 /// state's velocities and accelerations.
-fn overflow_cause(what: &str) -> &'static str {
-    if what == "equation" {
+fn overflow_cause(what: Computed) -> &'static str {
+    if what == Computed::Equation {
         "its terms are too large to be evaluated in f64 (their magnitude is beyond 1.8e308, the largest \
          double, as squared lengths beyond about 1.3e154 are), so its residual cannot be judged; give the \
          lengths in a larger unit (smaller numbers)"

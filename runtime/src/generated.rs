@@ -49,7 +49,7 @@ pub use crate::floats_serde::within::{De as FloatsDe, Ser as FloatsSer};
 #[cfg(feature = "serde")]
 pub use serde;
 
-use crate::error::Quantity;
+use crate::error::{Computed, Quantity};
 use crate::kin::FlatMotion;
 use crate::mechanism::{bad_values, location};
 
@@ -116,7 +116,7 @@ where
     let at = Box::new(location::<M, N, NI, NO>(x, Some(block)));
     if let Some(row) = bad_row {
         let name = M::BLOCKS.get(block).and_then(|b| b.equations.get(row)).cloned().unwrap_or(Cow::Borrowed("?"));
-        return Error::Domain { what: "equation", name, at };
+        return Error::Domain { what: Computed::Equation, name, at };
     }
     Error::Singular { pivot_ratio, tolerance: cfg.singular_tol, at }
 }
@@ -135,8 +135,8 @@ where
     if let Some(e) = bad_values::<M, N, NI, NO>(m, &kin.x, guess) {
         return e;
     }
-    let (what, index) = kin.first_non_finite().unwrap_or(("value", 0));
-    let name = if what.starts_with("output") { M::OUTPUTS.get(index) } else { M::UNKNOWNS.get(index) };
+    let (what, index) = kin.first_non_finite().unwrap_or((Computed::Value, 0));
+    let name = if what.is_output() { M::OUTPUTS.get(index) } else { M::UNKNOWNS.get(index) };
     Error::Domain {
         what,
         name: Cow::Borrowed(name.copied().unwrap_or("?")),
@@ -247,7 +247,7 @@ where
     }
     if !sens.all_finite() {
         return Err(Error::Domain {
-            what: "parameter sensitivity of",
+            what: Computed::ParameterSensitivity,
             name: Cow::Borrowed(sens.first_non_finite(&M::UNKNOWNS, &M::OUTPUTS)),
             at: Box::new(location::<M, N, NI, NO>(&kin.x, None)),
         });

@@ -4,6 +4,7 @@
 //! Plain data: what needs the mechanism's names ([`Kin::checked_motion`]) is defined with the
 //! [`Mechanism`](crate::Mechanism) trait, above this module.
 
+use crate::error::Computed;
 use crate::solvers::lu::Factor;
 use crate::solvers::newton::SolveReport;
 
@@ -340,9 +341,9 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
         m
     }
 
-    /// Index of the first non-finite value, as a label for error messages.
+    /// The kind and index of the first non-finite value, for error messages.
     #[doc(hidden)]
-    pub fn first_non_finite(&self) -> Option<(&'static str, usize)> {
+    pub fn first_non_finite(&self) -> Option<(Computed, usize)> {
         let parts = [
             &self.q[..],
             self.dq.as_flattened(),
@@ -386,17 +387,17 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
 /// The kind and index of the first non-finite value of a state of `ni` inputs given flat
 /// (each unknown's or output's analogs contiguous, as a compiled `Kin` lays them out):
 /// positions, their velocity and acceleration analogs, then the outputs and theirs.
-pub fn first_non_finite_state([q, dq, d2q, out, dout, d2out]: [&[f64]; 6], ni: usize) -> Option<(&'static str, usize)> {
+pub fn first_non_finite_state([q, dq, d2q, out, dout, d2out]: [&[f64]; 6], ni: usize) -> Option<(Computed, usize)> {
     let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
     // No analogs without inputs: chunks of one over empty slices.
     let (per1, per2) = (ni.max(1), (ni * ni).max(1));
-    let parts: [(&'static str, &[f64], usize); 6] = [
-        ("position", q, 1),
-        ("velocity analog", dq, per1),
-        ("acceleration analog", d2q, per2),
-        ("output", out, 1),
-        ("output velocity analog", dout, per1),
-        ("output acceleration analog", d2out, per2),
+    let parts: [(Computed, &[f64], usize); 6] = [
+        (Computed::Position, q, 1),
+        (Computed::VelocityAnalog, dq, per1),
+        (Computed::AccelerationAnalog, d2q, per2),
+        (Computed::Output, out, 1),
+        (Computed::OutputVelocityAnalog, dout, per1),
+        (Computed::OutputAccelerationAnalog, d2out, per2),
     ];
     parts.into_iter().find_map(|(what, values, per)| values.chunks(per).position(bad).map(|k| (what, k)))
 }

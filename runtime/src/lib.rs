@@ -55,7 +55,7 @@ pub use analysis::Extreme;
 pub use analysis::objective::{Extremum, ExtremumOf};
 pub use angles::{deg, to_deg};
 pub use configured::Configured;
-pub use error::{Error, Quantity, Source};
+pub use error::{Computed, Error, Quantity, Source};
 pub use events::{BlockInfo, BlockNames, Event, EventKind, Location};
 pub use kin::{DetSigns, FlatMotion, Health, Jac, Kin, Sens};
 pub use kinds::{LENGTH_UNIT, QuantityKind};

@@ -123,13 +123,13 @@ fn expression_outside_its_domain_is_domain_error() {
     // `reach = sqrt(x - 3)` is NaN for x < 3 although the loop closes (2 <= x <= 4).
     let e = M.solve(2.5).unwrap_err();
     match &e {
-        Error::Domain { what: "output", name, .. } if name == "reach" => {}
+        Error::Domain { what: kinloop::Computed::Output, name, .. } if name == "reach" => {}
         other => panic!("{other:?}"),
     }
     assert!(e.to_string().contains("reach"));
     // At x = 3 the value exists but its derivative (1 / (2 sqrt(0))) does not.
     match M.solve(3.0) {
-        Err(Error::Domain { what: "output velocity analog", name, .. }) if name == "reach" => {}
+        Err(Error::Domain { what: kinloop::Computed::OutputVelocityAnalog, name, .. }) if name == "reach" => {}
         other => panic!("{other:?}"),
     }
 }

@@ -90,7 +90,7 @@ fn motion_with_huge_speeds_is_an_error_not_infinity() {
     let s = CRANK_ROCKER.solve(0.4).unwrap();
     assert!(s.motion(1.0, 0.0).is_ok());
     match s.motion(1e200, 0.0) {
-        Err(Error::Overflow { what: "acceleration", .. }) => {}
+        Err(Error::Overflow { what: kinloop::Computed::Acceleration, .. }) => {}
         other => panic!("{other:?}"),
     }
 }

@@ -1022,7 +1022,7 @@ fn is_overflow(err: &kinloop::Error, name: &str) -> bool {
         .iter()
         .all(|part| text.contains(part));
     assert!(said, "{text}");
-    matches!(err, kinloop::Error::Overflow { what: "equation", name: n, .. } if n == name)
+    matches!(err, kinloop::Error::Overflow { what: kinloop::Computed::Equation, name: n, .. } if n == name)
 }
 
 /// A Newton equation whose terms leave the range of `f64` (squared lengths of a mechanism of

@@ -310,7 +310,7 @@ where
                         let overflows = k * lim.magnitude * most * most > f64::MAX;
                         let allowed = match e {
                             Error::Singular { .. } => lim.within_tolerance(inside),
-                            Error::Domain { what: quantity, .. } => overflows && quantity.contains("acceleration"),
+                            Error::Domain { what: quantity, .. } => overflows && quantity.is_acceleration(),
                             _ => false,
                         };
                         assert!(allowed, "{what} at size {k:e}: {e}, where size 1 solves");

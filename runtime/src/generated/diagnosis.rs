@@ -5,7 +5,7 @@
 //! at run time (`kinloop_model`) by the names it read, so that its errors are the compiled
 //! ones.
 
-use crate::error::{Error, Quantity};
+use crate::error::{Computed, Error, Quantity};
 use crate::events::Location;
 use crate::kinds::QuantityKind;
 use crate::solvers::closed::largest_precise_angle;
@@ -70,7 +70,9 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
     let equations = at.block.as_ref().map_or(&[][..], |(_, info)| &info.equations);
     let name = |row: usize| equations.get(row).cloned().unwrap_or(Cow::Borrowed("?"));
     match fail {
-        BlockFailure::NonFinite { row, .. } => Error::Domain { what: "equation", name: name(row), at: Box::new(at) },
+        BlockFailure::NonFinite { row, .. } => {
+            Error::Domain { what: Computed::Equation, name: name(row), at: Box::new(at) }
+        }
         BlockFailure::NoConvergence { row, iterations, residual } => {
             Error::NoConvergence { iterations, residual, equation: name(row), at: Box::new(at) }
         }
@@ -87,7 +89,9 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
         BlockFailure::Underflow { row, magnitude, least } => {
             Error::Underflow { equation: name(row), magnitude, least, at: Box::new(at) }
         }
-        BlockFailure::Overflow { row } => Error::Overflow { what: "equation", name: name(row), at: Box::new(at) },
+        BlockFailure::Overflow { row } => {
+            Error::Overflow { what: Computed::Equation, name: name(row), at: Box::new(at) }
+        }
         // Named by `block_failure` (`mechanism`), which knows the guesses.
         BlockFailure::TooManyTurns { value } => turns_error(Cow::Borrowed("?"), value, at),
     }

@@ -7,7 +7,7 @@
 //! `Table::from_states::<M, _, _, _>(..)`) but defined here, on the trait's side.
 
 use crate::dims::Dims;
-use crate::error::Error;
+use crate::error::{Computed, Error};
 use crate::events::Location;
 use crate::kin::{FlatMotion, Kin};
 use crate::kinds::QuantityKind;
@@ -27,10 +27,10 @@ impl<const N: usize, const NI: usize, const NO: usize> Kin<N, NI, NO> {
         let m = self.motion(omega, eps);
         let bad = |v: &[f64]| v.iter().position(|x| !x.is_finite());
         let found = [
-            ("velocity", bad(&m.qdot), &M::UNKNOWNS[..]),
-            ("acceleration", bad(&m.qddot), &M::UNKNOWNS[..]),
-            ("output velocity", bad(&m.out_dot), &M::OUTPUTS[..]),
-            ("output acceleration", bad(&m.out_ddot), &M::OUTPUTS[..]),
+            (Computed::Velocity, bad(&m.qdot), &M::UNKNOWNS[..]),
+            (Computed::Acceleration, bad(&m.qddot), &M::UNKNOWNS[..]),
+            (Computed::OutputVelocity, bad(&m.out_dot), &M::OUTPUTS[..]),
+            (Computed::OutputAcceleration, bad(&m.out_ddot), &M::OUTPUTS[..]),
         ]
         .into_iter()
         .find_map(|(what, index, names)| index.map(|i| (what, names.get(i).copied().unwrap_or("?"))));

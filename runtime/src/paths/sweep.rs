@@ -63,7 +63,7 @@ use super::curve::{self, CurvePoint, Metric, Path};
 use super::locate::{self, Found, Reach};
 use super::outcome::SweepResult;
 use crate::dims::{Dims, KinState, Square, Store};
-use crate::error::{Error, Quantity};
+use crate::error::{Computed, Error, Quantity};
 use crate::events::{Event, EventKind, Location};
 use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
@@ -932,7 +932,7 @@ where
         // An equation whose terms are too small or too large for `f64` is judged nowhere near
         // here: the diagnosis's traces would judge it as the step did, and take the noise of its
         // residual for a crossing (or find no point to trace). Said as it is.
-        if let Some(e @ (Error::Underflow { .. } | Error::Overflow { what: "equation", .. })) = failure {
+        if let Some(e @ (Error::Underflow { .. } | Error::Overflow { what: Computed::Equation, .. })) = failure {
             return Err(e);
         }
         // A corner of the curve, not a failure: the sweep goes on past it.

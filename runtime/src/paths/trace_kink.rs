@@ -231,7 +231,7 @@ fn slope<S: KinState, X: crate::dims::Store>(k: &S, path: &Path<X>, u: usize) ->
 /// whose positions and velocity analogs are fine.
 fn acceleration_beyond_range(e: &Error) -> Option<Cow<'static, str>> {
     match e {
-        Error::Domain { what, name, .. } | Error::Overflow { what, name, .. } if what.contains("acceleration") => {
+        Error::Domain { what, name, .. } | Error::Overflow { what, name, .. } if what.is_acceleration() => {
             Some(name.clone())
         }
         _ => None,
