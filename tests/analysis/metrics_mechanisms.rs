@@ -6,7 +6,6 @@ use kinloop::analysis::Sampled;
 use kinloop::metrics::{FourBarLinks, GrashofClass, Limits, grashof};
 use kinloop_fixtures::FourBar;
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use crate::support::{four_bar_angles, four_bar_limit, tol};
@@ -99,7 +98,7 @@ proptest! {
 /// of a change point, where the sweep passes a crossing rather than stopping); of the 64 cases,
 /// 14 cannot close (the classification's error checked), 36 rock and 14 turn.
 fn grashof_config() -> ProptestConfig {
-    ProptestConfig { cases: 64, failure_persistence: None, rng_seed: RngSeed::Fixed(5), ..ProptestConfig::default() }
+    crate::support::fixed_seed(5, 64)
 }
 
 proptest! {

@@ -8,6 +8,22 @@ use std::f64::consts::{PI, TAU};
 
 pub mod tol;
 
+/// A property test's configuration: `cases` cases from the fixed `seed`, the same on every run
+/// (as CI runs them), no failure files; unless the environment asks for a stress run by hand:
+/// `STRESS_SEED` another seed, `STRESS_MULT` that many times the cases, e.g.
+/// `STRESS_SEED=107 STRESS_MULT=25 cargo test --release --test sweeps sweep_any_step` (a case
+/// one finds belongs in the test as a fixed case).
+pub fn fixed_seed(seed: u64, cases: u32) -> proptest::test_runner::Config {
+    let env = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<u64>().ok());
+    let mult = env("STRESS_MULT").map_or(1, |m| u32::try_from(m).unwrap_or(u32::MAX).max(1));
+    proptest::test_runner::Config {
+        cases: cases.saturating_mul(mult),
+        failure_persistence: None,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(env("STRESS_SEED").unwrap_or(seed)),
+        ..proptest::test_runner::Config::default()
+    }
+}
+
 /// Declares a mechanism twice from one body: as `$name` (closed forms where recognised) and as
 /// `$newton` with `#[kinloop(newton)]`, so that the two cannot drift apart.
 macro_rules! with_newton_twin {

@@ -14,7 +14,6 @@
 use kinloop::paths::trace::trace_curve;
 use kinloop::{EventKind, Kin, Mechanism, Sweep, SweepStop, TraceConfig};
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 use std::f64::consts::{PI, TAU};
 
 kinloop::mechanism! {
@@ -350,7 +349,7 @@ where
 
 /// A fixed seed: the same cases on every run.
 fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig { cases, failure_persistence: None, rng_seed: RngSeed::Fixed(42), ..ProptestConfig::default() }
+    crate::support::fixed_seed(42, cases)
 }
 
 proptest! {

@@ -19,7 +19,6 @@
 use kinloop::{EventKind, TraceConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 use std::f64::consts::{PI, TAU};
 
 use crate::support::{four_bar_joint, tol};
@@ -146,12 +145,7 @@ fn turn_distance(x: f64, l: f64) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig {
-        cases: 24,
-        failure_persistence: None,
-        rng_seed: RngSeed::Fixed(3),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(crate::support::fixed_seed(3, 24))]
 
     #[test]
     fn random_four_bars_are_traced_with_their_limit_positions_and_one_mode_between(
@@ -356,12 +350,7 @@ fn a_folded_change_point_is_traced_through() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig {
-        cases: 48,
-        failure_persistence: None,
-        rng_seed: RngSeed::Fixed(3),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(crate::support::fixed_seed(3, 48))]
 
     /// Random near-kite drag-links (as `near_kites_swept_at_any_density_cross_at_their_change_point`
     /// sweeps them) traced over a turn through their change point (before the trace passed such
