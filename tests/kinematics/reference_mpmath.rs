@@ -22,6 +22,17 @@ kinloop::mechanism! {
 }
 
 kinloop::mechanism! {
+    /// Crank-rocker whose rocker is a twelfth of its coupler: the angle at B between B -> D and
+    /// the coupler stays below 3 degrees.
+    pub struct ShortRockerFourBar {
+        params a = 0.2, b = 3.0, c = 0.25, d = 3.0;
+        input phi;
+        unknowns beta = 0.05, gamma = 1.0;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+kinloop::mechanism! {
     /// Offset slider-crank: crank `r`, rod `l`, slider at height `e`.
     pub struct OffsetSliderCrank {
         params r = 1.0, l = 3.0, e = 0.5;
@@ -269,6 +280,33 @@ fn fine_sweep<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO
 #[test]
 fn four_bar_with_coupler_point_matches_the_50_digit_reference() {
     check("four_bar", &FourBarP::default(), include_str!("../reference/four_bar.csv"), &[], 3.2);
+}
+
+/// The dyad's root from its coefficients alone (`a² + b² - c²`) lost digits to cancellation
+/// here: the coupler's angle 5 eps off, which the rocker, a twelfth of the coupler, turned into
+/// 3e-14 rad; from the triangle of the lengths, rounding alone.
+#[test]
+fn short_rocker_four_bar_matches_the_50_digit_reference() {
+    check(
+        "short_rocker_four_bar",
+        &ShortRockerFourBar::default(),
+        include_str!("../reference/short_rocker_four_bar.csv"),
+        &[],
+        3.0,
+    );
+}
+
+/// The same four-bar at sizes where the dyad's `a² + b²` (a fourth power of the lengths) leaves
+/// the range of `f64` and its equation is solved divided by a power of two: its angles and
+/// their analogs are those of the unit-sized one. There the root came from the coefficients
+/// alone, at any angle of the triangle.
+#[test]
+fn short_rocker_four_bar_at_extreme_sizes_matches_the_50_digit_reference() {
+    for size in [2f64.powi(-300), 2f64.powi(300), 2f64.powi(-500), 2f64.powi(500)] {
+        let ShortRockerFourBar { a, b, c, d } = ShortRockerFourBar::default();
+        let m = ShortRockerFourBar { a: a * size, b: b * size, c: c * size, d: d * size };
+        check("short_rocker_four_bar", &m, include_str!("../reference/short_rocker_four_bar.csv"), &[], 3.0 * size);
+    }
 }
 
 #[test]

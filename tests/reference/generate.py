@@ -41,6 +41,23 @@ def four_bar():
     return "four_bar", loops, points, [0.5, 1.5], [2 * pi * k / 24 for k in range(25)]
 
 
+def short_rocker_four_bar():
+    # A crank-rocker whose rocker is a twelfth of its coupler: the coupler's end C stays within
+    # 0.25 of the rocker's pivot D, so the angle at B between B -> D and the coupler is below
+    # 3 degrees over the whole turn (where the dyad's root, taken from its coefficients alone,
+    # loses digits to the cancellation of a^2 + b^2 - c^2).
+    a, b, c, d = mpf("0.2"), mpf(3), mpf("0.25"), mpf(3)
+
+    def loops(q, phi):
+        beta, gamma = q
+        return [a * cos(phi) + b * cos(beta) - d - c * cos(gamma), a * sin(phi) + b * sin(beta) - c * sin(gamma)]
+
+    def points(q, phi):
+        return []
+
+    return "short_rocker_four_bar", loops, points, [0.05, 1.0], [2 * pi * k / 24 for k in range(25)]
+
+
 def slider_crank():
     r, l, ecc = mpf(1), mpf(3), mpf("0.5")
 
@@ -189,7 +206,7 @@ def row2(loops, points, x, guess):
 
 def main():
     wanted = sys.argv[1:]
-    for name, loops, points, guess, angles in [four_bar(), slider_crank(), watt_six_bar(), class_four(), rhombic_drive()]:
+    for name, loops, points, guess, angles in [four_bar(), short_rocker_four_bar(), slider_crank(), watt_six_bar(), class_four(), rhombic_drive()]:
         if wanted and name not in wanted:
             continue
         n, npts = len(guess), len(points([mpf(g) for g in guess], mpf(0)))

@@ -739,7 +739,7 @@ fn dyad_of_rescaled(
 }
 
 /// `d2 = r2 - c²` of a dyad's circle intersection, recomputed from the triangle of its lengths
-/// where the subtraction cancels (`|d2| < r2 / 2^20`), given its `links` `[e0, e1, l0², l1²]`
+/// where the subtraction cancels (`|d2| < r2 / 2^6`), given its `links` `[e0, e1, l0², l1²]`
 /// (see [`dyad_of`]): `d2 = 4 A²` for the triangle of sides `l0`, `l1` and `|e|` (area `A`),
 /// by Kahan's stable form of Heron's formula. The direct `d2` carries an error of about `eps r2` (that of `c`, whose terms are the squares of the
 /// lengths), so the root's angle one of `eps / sin θ` for the triangle's angle `θ` between `e`
@@ -778,9 +778,14 @@ fn first_link_long(l0_sq: f64, l1_sq: f64) -> bool {
 /// `16 eps²`: see [`first_link_long`].
 const FIRST_LINK_SHORT: f64 = 16.0 * f64::EPSILON * f64::EPSILON;
 
-/// `|d2| / r2` below which [`dyad_d2`] recomputes: the direct form's angle is then off by more
-/// than about `500 eps`.
-const DYAD_CANCELLED: f64 = 1.0 / (1u64 << 20) as f64;
+/// `|d2| / r2` below which [`dyad_d2`] recomputes (`2^-6`: the triangle's angle `θ` between `e`
+/// and the first link below about 7 degrees). The direct form's angle is off by about
+/// `eps / (2 tan θ)`, a few eps at this bound; and the second link's angle by that times the
+/// ratio of the first link to the second, where the first is much the longer (a coupler twelve
+/// times its rocker, `θ` below 3 degrees over the turn: at a bound of `2^-20` the rocker's angle
+/// came out `3e-14` rad off, where the triangle gives rounding alone; tested against
+/// 50-digit references).
+const DYAD_CANCELLED: f64 = 1.0 / (1u64 << 6) as f64;
 
 /// `4 A²` for the triangle of sides `|e|`, `l0` and `l1` of `links` `[e0, e1, l0², l1²]`, by
 /// Kahan's ordering (sides `x >= y >= z`): `16 A² = (x + (y + z)) (z - (x - y)) (z + (x - y)) (x + (y - z))`,
@@ -841,6 +846,8 @@ fn rescaled(
     let (a, b, c) = (a * k, b * k, c * k);
     let r2 = a * a + b * b;
     let d2 = r2 - c * c;
+    // A dyad's cancelled `d2` from the triangle, as where the size needs no rescaling.
+    let d2 = links.map_or(d2, |links| dyad_d2_divided(d2, r2, links, k));
     let d = match links {
         Some(links) if !(d2 >= 0.0 && r2 >= f64::MIN_POSITIVE) => dyad_touching(d2, r2, c, links, cfg)?,
         // A triangle that closes with a link below the rounding of the others: its angle is
@@ -849,6 +856,27 @@ fn rescaled(
         _ => root_offset(d2, r2, c, flip, cfg)?,
     };
     Ok((k, [a, b, c], r2, d))
+}
+
+/// [`dyad_d2`] of a dyad's equation divided by `k` ([`rescaled`]), given its `links` as they are
+/// (`[e0, e1, l0², l1²]`, at a size where the triangle's `4 A²`, a fourth power of the lengths,
+/// may leave the range of `f64`): the triangle of the lengths divided by `s`, the power of two
+/// nearest the reciprocal of the largest (exact), whose `4 A² s⁴` is then of order one, times
+/// `(k / s²)²` (a power of two) for the divided equation's `d2 = 4 A² k²`. Without it the dyad
+/// was solved from its coefficients alone at sizes beyond about `2^±256`, where `a² + b²`
+/// leaves the range, and lost to cancellation what the triangle keeps at other sizes.
+fn dyad_d2_divided(d2: f64, r2: f64, [e0, e1, l0, l1]: [f64; 4], k: f64) -> f64 {
+    if d2.abs() >= r2 * DYAD_CANCELLED && first_link_long(l0, l1) {
+        return d2;
+    }
+    let big = e0.abs().max(e1.abs()).max(l0.sqrt()).max(l1.sqrt());
+    // Lengths that are not finite, or all zero: the coefficients' own verdict.
+    if !(big.is_finite() && big > 0.0) {
+        return d2;
+    }
+    let s = reciprocal_power_of_two(big);
+    let f = k / (s * s);
+    dyad_d2_stable([e0 * s, e1 * s, l0 * (s * s), l1 * (s * s)]) * f * f
 }
 
 /// The failure of `a cos q + b sin q = c` with a coefficient that is not finite: a NaN one's
@@ -1013,13 +1041,32 @@ pub fn root_offset_deferred(d2: f64, flip: bool) -> f64 {
 pub fn dyad_of_deferred(dyad: [f64; 6], c: f64, flip: bool) -> (f64, f64) {
     let [a, b, _, _, l0, l1] = dyad;
     let r2 = a * a + b * b;
-    // Where the checked step rescales (`a² + b²` not normal), or recomputes a cancelled `d2`
-    // from the triangle, or judges a short first link, a NaN trace: the checked kernel then
-    // answers.
+    // Where the checked step rescales (`a² + b²` not normal), a NaN trace: the checked kernel
+    // then answers. A cancelled `d2` or a short first link: the triangle, out of line.
     let r2 = if r2 >= f64::MIN_POSITIVE { r2 } else { f64::NAN };
     let d2 = r2 - c * c;
-    let d2 = if d2 >= r2 * DYAD_CANCELLED && first_link_long(l0, l1) { d2 } else { f64::NAN };
-    roots_of_offset(a, b, c, r2, root_offset_deferred(d2, flip))
+    let d = if d2 >= r2 * DYAD_CANCELLED && first_link_long(l0, l1) {
+        root_offset_deferred(d2, flip)
+    } else {
+        dyad_offset_cancelled_deferred(d2, r2, [dyad[2], dyad[3], l0, l1], flip)
+    };
+    roots_of_offset(a, b, c, r2, d)
+}
+
+/// [`dyad_offset_cancelled`] without its tests: the offset from the triangle where the checked
+/// step takes it from there and succeeds (a dyad whose first link is much the longer takes
+/// this path at every step: sent back to the checked kernel, each of its sweep's samples was
+/// solved twice); NaN wherever the checked step judges further (no triangle, a limit position
+/// rounded past, a link below the rounding), which the checked kernel then answers.
+#[cold]
+#[inline(never)]
+fn dyad_offset_cancelled_deferred(d2: f64, r2: f64, links: [f64; 4], flip: bool) -> f64 {
+    let d2 = dyad_d2(d2, r2, links);
+    if d2 >= 0.0 && !second_turns_freely(links) && !short_link(links) {
+        root_offset_deferred(d2, flip)
+    } else {
+        f64::NAN
+    }
 }
 
 /// [`dyad_roots`] without its test: the same formulas, NaN where it
