@@ -1,6 +1,9 @@
 //! kinloop against independent 50-digit references (tests/reference/generate.py, mpmath): a
 //! four-bar with a coupler point, an offset slider-crank, a two-loop Watt six-bar, a class IV
-//! group, a rhombic drive and a two-input five-bar, over a whole crank turn, in point solves
+//! group, a rhombic drive, a two-input five-bar, the gear-lever drive and the slotted lever
+//! (polar blocks: a length and an angle), two cam linkages (a chain of a dyad and a slider's
+//! one-angle block; a dyad moved by an explicit lift law) and the roller edger (a dyad whose link
+//! lengthens with the input, time), over a whole crank turn (the edger's stroke), in point solves
 //! (from a guess 0.05 rad off) and in sweeps.
 //!
 //! Tolerances: positions within 1e-14 (angles absolute, lengths relative to the largest link:
@@ -9,6 +12,11 @@
 //! Jacobian: rounding times its condition number, here below 1e2).
 
 use kinloop::{Kin, Mechanism, NewtonConfig};
+use kinloop_fixtures::SlottedLever;
+use kinloop_fixtures::cam_linkage::{CamLinkage, HarmonicCamRocker};
+use kinloop_fixtures::gear_lever::GearLever;
+use kinloop_fixtures::roller_edger::RollerEdger;
+use std::f64::consts::PI;
 
 kinloop::mechanism! {
     /// Crank-rocker with a coupler point P at `p` from B, `alpha` off the coupler.
@@ -347,4 +355,58 @@ kinloop::mechanism! {
 #[test]
 fn five_bar_matches_the_50_digit_reference() {
     check("five_bar", &FiveBarC::default(), include_str!("../reference/five_bar.csv"), &[], 2.5);
+}
+
+// The mechanisms below are the fixtures' (the examples' and the papers' tests'), each given here
+// the parameters the reference was computed with.
+
+/// A polar block: the pin's distance from the rocker's pivot and the rocker's angle, which turns
+/// once a carrier turn with three stops and swings through half a radian between rows where the
+/// pin passes nearest the pivot (72 rows a turn).
+#[test]
+fn gear_lever_matches_the_50_digit_reference() {
+    let m = GearLever { l_c: 2.0, l_p: 1.3, u: 3.0 };
+    check("gear_lever", &m, include_str!("../reference/gear_lever.csv"), &[0], 3.3);
+}
+
+#[test]
+fn slotted_lever_matches_the_50_digit_reference() {
+    let m = SlottedLever { r: 1.0, d: 2.0, l: 4.0 };
+    check("slotted_lever", &m, include_str!("../reference/slotted_lever.csv"), &[0], 4.0);
+}
+
+/// Two loops in a chain: the cam pair's dyad, then the slider's one-angle block and its linear
+/// length on the rocker's second arm; the pressure angle an output of the unknowns. Millimetres.
+#[test]
+fn cam_linkage_matches_the_50_digit_reference() {
+    let m = CamLinkage {
+        e: 10.0,
+        r_cam: 40.0,
+        r_roller: 12.0,
+        a_x: 0.0,
+        a_y: 80.0,
+        l_arm: 60.0,
+        l_out: 50.0,
+        delta: 140.0 * PI / 180.0,
+        l_rod: 150.0,
+        h: 130.0,
+    };
+    check("cam_linkage", &m, include_str!("../reference/cam_linkage.csv"), &[3], 150.0);
+}
+
+/// A dyad whose base point the input moves through an explicit law (its analogs those of the
+/// law's derivatives through the chain rule).
+#[test]
+fn harmonic_cam_rocker_matches_the_50_digit_reference() {
+    let m = HarmonicCamRocker { lift: 20.0, y0: 60.0, l_rod: 70.0, c: 40.0, d_x: -40.0, d_y: 140.0 };
+    check("harmonic_cam_rocker", &m, include_str!("../reference/harmonic_cam_rocker.csv"), &[], 140.0);
+}
+
+/// Time as the input: contour 1 a dyad whose first link (the cylinder) lengthens with it, contour
+/// 2 a dyad on contour 1's link 3, over the cylinder's stroke (6 s).
+#[test]
+fn roller_edger_matches_the_50_digit_reference() {
+    let m =
+        RollerEdger { l1: 0.9, l3: 0.6, l5: 1.2, alpha: 0.2, v1: 0.05, l2: 1.0, s2: 0.1, l4: 0.7, l6: 1.4, beta: 0.9 };
+    check("roller_edger", &m, include_str!("../reference/roller_edger.csv"), &[], 1.4);
 }

@@ -6,6 +6,9 @@ central differences at 50 digits (h = 1e-12: truncation ~h^2 = 1e-24, cancellati
 1e-26). Positions, velocity and acceleration analogs of the unknowns and of the points are written
 with 17 significant digits, one row per input value, continuing the branch from row to row.
 
+The gear-lever drive, the slotted lever, the two cam linkages and the roller edger are continued
+from row to row through 16 substeps (`march`), so that each row stays on the branch of the first.
+
 The five-bar has two inputs: its rows hold both, its first analogs by each input (th1 then th2
 for each quantity) and its second analogs by the pairs (th1, th1), (th1, th2), (th2, th2), the
 cross one by the four-point stencil (f(+h, +h) - f(+h, -h) - f(-h, +h) + f(-h, -h)) / 4h^2
@@ -158,6 +161,116 @@ def five_bar():
     return "five_bar", loops, points, [1.0, 2.0], inputs
 
 
+def gear_lever():
+    # The gear-lever drive: the planet pin, the sum of the carrier's and the planet's arms
+    # (angles from the Y axis: direction a is (sin a, cos a)), slides in a rocker pivoted at the
+    # origin; unknowns the pin's distance s and the rocker's angle phi (polar coordinates of the
+    # pin, one block). The pin stays between l_c - l_p and l_c + l_p from the pivot; the rocker
+    # turns once a carrier turn, with three stops.
+    l_c, l_p, u = mpf(2), mpf("1.3"), mpf(3)
+
+    def pin(alpha):
+        return [l_c * sin(alpha) + l_p * sin((1 - u) * alpha), l_c * cos(alpha) + l_p * cos((1 - u) * alpha)]
+
+    def loops(q, alpha):
+        s, phi = q
+        x, y = pin(alpha)
+        return [x - s * sin(phi), y - s * cos(phi)]
+
+    def points(q, alpha):
+        return pin(alpha)
+
+    return "gear_lever", loops, points, [3.3, 0], [2 * pi * k / 72 for k in range(73)]
+
+
+def slotted_lever():
+    # Slotted-lever quick return: the crank pin (r at phi about the origin) slides in a rocker
+    # pivoted at (0, -d), at s from the pivot, rocker angle theta; the rocker's tip at l.
+    r, d, l_tip = mpf(1), mpf(2), mpf(4)
+
+    def loops(q, phi):
+        s, theta = q
+        return [r * cos(phi) - s * cos(theta), r * sin(phi) + d - s * sin(theta)]
+
+    def points(q, phi):
+        _, theta = q
+        return [l_tip * cos(theta), -d + l_tip * sin(theta)]
+
+    return "slotted_lever", loops, points, [2.24, 1.1], [2 * pi * k / 24 for k in range(25)]
+
+
+def cam_linkage():
+    # Disc cam (centre at e from the shaft) with a roller follower on a bell-crank rocker
+    # pivoted at A, whose second arm drives a slider on the line y = h through a rod: the cam
+    # pair is the four-bar O C P A (loop `cam`), the rod and slider a slider-crank on the
+    # rocker's second arm (loop `rod`). Millimetres. Outputs: C, P, Q and the pressure angle.
+    e_, r_cam, r_roller, a_x, a_y, l_arm = mpf(10), mpf(40), mpf(12), mpf(0), mpf(80), mpf(60)
+    l_out, delta, l_rod, h = mpf(50), 140 * pi / 180, mpf(150), mpf(130)
+
+    def loops(q, phi):
+        beta, psi, gamma, x = q
+        return [
+            e_ * cos(phi) + (r_cam + r_roller) * cos(beta) - a_x - l_arm * cos(psi),
+            e_ * sin(phi) + (r_cam + r_roller) * sin(beta) - a_y - l_arm * sin(psi),
+            a_x + l_out * cos(psi + delta) + l_rod * cos(gamma) - x,
+            a_y + l_out * sin(psi + delta) + l_rod * sin(gamma) - h,
+        ]
+
+    def points(q, phi):
+        beta, psi, _, _ = q
+        return [
+            e_ * cos(phi), e_ * sin(phi),
+            a_x + l_arm * cos(psi), a_y + l_arm * sin(psi),
+            a_x + l_out * cos(psi + delta), a_y + l_out * sin(psi + delta),
+            beta - psi - pi / 2,
+        ]
+
+    return "cam_linkage", loops, points, [0.85, -0.75, 0, 160], [2 * pi * k / 24 for k in range(25)]
+
+
+def harmonic_cam_rocker():
+    # A translating follower lifted by the double-harmonic law s(phi) drives a rocker pivoted at
+    # D through a rod: one dyad whose base point moves by an explicit function of the input.
+    lift, y0, l_rod, c, d_x, d_y = mpf(20), mpf(60), mpf(70), mpf(40), mpf(-40), mpf(140)
+
+    def lifted(phi):
+        return y0 + lift / 2 * ((1 - cos(phi)) - (1 - cos(2 * phi)) / 4)
+
+    def loops(q, phi):
+        gamma, psi = q
+        return [l_rod * cos(gamma) - d_x - c * cos(psi), lifted(phi) + l_rod * sin(gamma) - d_y - c * sin(psi)]
+
+    def points(q, phi):
+        _, psi = q
+        return [mpf(0), lifted(phi), d_x + c * cos(psi), d_y + c * sin(psi)]
+
+    return "harmonic_cam_rocker", loops, points, [1.6, -0.25], [2 * pi * k / 24 for k in range(25)]
+
+
+def roller_edger():
+    # The roller edger (time input t, seconds): cylinder 1 of length v1 t + l1 and link 3 close
+    # contour 1 with the frame l5 at alpha (a dyad whose first link's length moves with the
+    # input); cylinder 2 (fixed length s2 + l2) and link 4 close contour 2 with link 3 and the
+    # frame l6 at beta. Metres.
+    l1, l3, l5, alpha, v1 = mpf("0.9"), mpf("0.6"), mpf("1.2"), mpf("0.2"), mpf("0.05")
+    l2, s2, l4, l6, beta = mpf(1), mpf("0.1"), mpf("0.7"), mpf("1.4"), mpf("0.9")
+
+    def loops(q, t):
+        phi1, phi3, phi2, phi4 = q
+        s1 = v1 * t + l1
+        return [
+            s1 * cos(phi1) + l3 * cos(phi3) - l5 * cos(alpha),
+            s1 * sin(phi1) + l3 * sin(phi3) - l5 * sin(alpha),
+            (s2 + l2) * cos(phi2) + l4 * cos(phi4) + l3 * cos(phi3) - l6 * cos(beta),
+            (s2 + l2) * sin(phi2) + l4 * sin(phi4) + l3 * sin(phi3) - l6 * sin(beta),
+        ]
+
+    def points(q, t):
+        return []
+
+    return "roller_edger", loops, points, [1.2, -0.8, 2.0, 0.5], [mpf(6) * k / 24 for k in range(25)]
+
+
 def solve(loops, phi, guess):
     q = findroot(lambda *q: loops(list(q), phi), [mpf(g) for g in guess], tol=mpf(10) ** -45, maxsteps=200)
     q = [q] if not isinstance(q, matrix) else [q[i] for i in range(len(guess))]
@@ -204,18 +317,35 @@ def row2(loops, points, x, guess):
     return q0, values
 
 
+# Substeps of the continuation from one row's input to the next (the row's solve then starts
+# from the last substep's root), for the mechanisms whose unknowns move far between rows: the
+# gear-lever's rocker swings through most of a turn where the pin passes nearest its pivot.
+MARCH = 16
+
+
+def march(loops, q, frm, to):
+    for k in range(1, MARCH):
+        q = solve(loops, frm + (to - frm) * k / MARCH, q)
+    return q
+
+
 def main():
     wanted = sys.argv[1:]
-    for name, loops, points, guess, angles in [four_bar(), short_rocker_four_bar(), slider_crank(), watt_six_bar(), class_four(), rhombic_drive()]:
+    one_input = [four_bar(), short_rocker_four_bar(), slider_crank(), watt_six_bar(), class_four(), rhombic_drive()]
+    marched = [gear_lever(), slotted_lever(), cam_linkage(), harmonic_cam_rocker(), roller_edger()]
+    for name, loops, points, guess, angles in one_input + marched:
         if wanted and name not in wanted:
             continue
         n, npts = len(guess), len(points([mpf(g) for g in guess], mpf(0)))
         header = ["phi"] + [f"q{u}" for u in range(n)] + [f"dq{u}" for u in range(n)] + [f"d2q{u}" for u in range(n)]
         header += [f"p{k}" for k in range(npts)] + [f"dp{k}" for k in range(npts)] + [f"d2p{k}" for k in range(npts)]
         lines = [",".join(header)]
-        q = guess
+        q, last = guess, None
         for phi in angles:
+            if name in [m[0] for m in marched] and last is not None:
+                q = march(loops, q, last, phi)
             q, values = row(loops, points, phi, q)
+            last = phi
             lines.append(",".join(mp.nstr(v, 17, min_fixed=0, max_fixed=0) for v in values))
         with open(os.path.join(HERE, f"{name}.csv"), "w") as out:
             out.write("\n".join(lines) + "\n")
