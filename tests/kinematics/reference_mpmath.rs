@@ -108,6 +108,26 @@ impl Reference {
         Reference { rows }
     }
 
+    /// The reference of the mechanism with every length multiplied by `size` (a power of two,
+    /// so exactly): the columns of the `quantities` that are lengths (unknowns below `at.n`,
+    /// then the point and output columns), their positions and analogs, times `size`.
+    fn scaled(&self, size: f64, at: Layout, quantities: &[usize]) -> Reference {
+        let mut rows = self.rows.clone();
+        for &k in quantities {
+            let mut columns = vec![at.position(k)];
+            for i in 0..at.ni {
+                columns.push(at.first(k, i));
+                columns.extend((i..at.ni).map(|j| at.second(k, i, j)));
+            }
+            for row in &mut rows {
+                for &c in &columns {
+                    row[c] *= size;
+                }
+            }
+        }
+        Reference { rows }
+    }
+
     /// Largest magnitude of column `k` over the turn.
     fn column_max(&self, k: usize) -> f64 {
         self.rows.iter().map(|r| r[k].abs()).fold(0.0, f64::max)
@@ -158,6 +178,7 @@ fn compare<const N: usize, const NI: usize, const NO: usize>(
     row: usize,
     k: &Kin<N, NI, NO>,
     lengths: &[usize],
+    angle_outputs: &[usize],
     length: f64,
 ) {
     let r = &reference.rows[row];
@@ -180,7 +201,7 @@ fn compare<const N: usize, const NI: usize, const NO: usize>(
         }
     }
     for o in 0..NO {
-        pos(N + o, k.out[o], r[at.position(N + o)], true);
+        pos(N + o, k.out[o], r[at.position(N + o)], !angle_outputs.contains(&o));
         for i in 0..NI {
             analog(at.first(N + o, i), k.dout[o][i]);
             for j in 0..NI {
@@ -207,13 +228,29 @@ fn check<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usi
     lengths: &[usize],
     length: f64,
 ) {
-    let reference = Reference::parse(text);
+    check_against(name, m, &Reference::parse(text), lengths, &[], length, 1.0);
+}
+
+/// [`check`] against a parsed (or scaled) reference of a mechanism `size` times the
+/// reference's.
+fn check_against<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usize>(
+    name: &str,
+    m: &M,
+    reference: &Reference,
+    lengths: &[usize],
+    angle_outputs: &[usize],
+    length: f64,
+    size: f64,
+) {
     let cfg = NewtonConfig::default();
-    // Point solves from a guess 0.05 off in every unknown.
+    // Point solves from a guess 0.05 off in every unknown (times the size in a length).
     for (i, r) in reference.rows.iter().enumerate() {
-        let guess = unknowns::<N, NI>(r).map(|q| q + 0.05);
+        let mut guess = unknowns::<N, NI>(r);
+        for (u, q) in guess.iter_mut().enumerate() {
+            *q += if lengths.contains(&u) { 0.05 * size } else { 0.05 };
+        }
         let k = m.kinematics_flat(&inputs(r), &guess, &cfg).unwrap_or_else(|e| panic!("{name} row {i}: {e}"));
-        compare(name, &reference, i, &k, lengths, length);
+        compare(name, reference, i, &k, lengths, angle_outputs, length);
     }
     // A sweep through the same inputs (its own predictor, its own step control).
     let first = &reference.rows[0];
@@ -231,9 +268,9 @@ fn check<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usi
         for (x, want) in k.x.iter().zip(&reference.rows[i]) {
             assert_close!(*x, *want, <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);
         }
-        compare(name, &reference, i, &k, lengths, length);
+        compare(name, reference, i, &k, lengths, angle_outputs, length);
     }
-    fine_sweep(name, m, &reference, lengths, length);
+    fine_sweep(name, m, reference, lengths, angle_outputs, length);
 }
 
 /// Sub-samples per reference row in [`fine_sweep`]: 0.25 degree apart, where a sweep advances
@@ -248,6 +285,7 @@ fn fine_sweep<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO
     m: &M,
     reference: &Reference,
     lengths: &[usize],
+    angle_outputs: &[usize],
     length: f64,
 ) {
     let (first, last) = (&reference.rows[0], &reference.rows[reference.rows.len() - 1]);
@@ -266,7 +304,7 @@ fn fine_sweep<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO
     for (i, k) in sweep.enumerate() {
         let k = k.unwrap_or_else(|e| panic!("{name} fine sweep sample {i}: {e}"));
         if i % FINE == 0 {
-            compare(name, reference, i / FINE, &k, lengths, length);
+            compare(name, reference, i / FINE, &k, lengths, angle_outputs, length);
         }
         let point = m.kinematics_flat(&k.x, &k.q, &cfg).unwrap_or_else(|e| panic!("{name} point {i}: {e}"));
         for u in 0..N {
@@ -376,7 +414,8 @@ fn slotted_lever_matches_the_50_digit_reference() {
 }
 
 /// Two loops in a chain: the cam pair's dyad, then the slider's one-angle block and its linear
-/// length on the rocker's second arm; the pressure angle an output of the unknowns. Millimetres.
+/// length on the rocker's second arm; the pressure angle an output of the unknowns (compared as
+/// an angle, absolutely). Millimetres.
 #[test]
 fn cam_linkage_matches_the_50_digit_reference() {
     let m = CamLinkage {
@@ -391,7 +430,8 @@ fn cam_linkage_matches_the_50_digit_reference() {
         l_rod: 150.0,
         h: 130.0,
     };
-    check("cam_linkage", &m, include_str!("../reference/cam_linkage.csv"), &[3], 150.0);
+    let reference = Reference::parse(include_str!("../reference/cam_linkage.csv"));
+    check_against("cam_linkage", &m, &reference, &[3], &[6], 150.0, 1.0);
 }
 
 /// A dyad whose base point the input moves through an explicit law (its analogs those of the
@@ -409,4 +449,61 @@ fn roller_edger_matches_the_50_digit_reference() {
     let m =
         RollerEdger { l1: 0.9, l3: 0.6, l5: 1.2, alpha: 0.2, v1: 0.05, l2: 1.0, s2: 0.1, l4: 0.7, l6: 1.4, beta: 0.9 };
     check("roller_edger", &m, include_str!("../reference/roller_edger.csv"), &[], 1.4);
+}
+
+/// Sizes where the fourth powers of the lengths (`2^±1200`, `2^±2000`), which a dyad's
+/// coefficients hold, leave the range of `f64` (its equation is then solved divided by a power of
+/// two), and their squares (up to `2^±1000`) come near its ends.
+fn extreme_sizes() -> [f64; 4] {
+    [2f64.powi(-300), 2f64.powi(300), 2f64.powi(-500), 2f64.powi(500)]
+}
+
+/// The polar blocks at extreme sizes: the lengths (the pin's distance, the pin, the tip) scale,
+/// the angles are the unit-sized ones'.
+#[test]
+fn polar_blocks_at_extreme_sizes_match_the_50_digit_reference() {
+    for size in extreme_sizes() {
+        let m = GearLever { l_c: 2.0 * size, l_p: 1.3 * size, u: 3.0 };
+        let reference = Reference::parse(include_str!("../reference/gear_lever.csv"));
+        let reference = reference.scaled(size, Layout { ni: 1, n: 2, no: 2 }, &[0, 2, 3]);
+        check_against("gear_lever", &m, &reference, &[0], &[], 3.3 * size, size);
+        let m = SlottedLever { r: size, d: 2.0 * size, l: 4.0 * size };
+        let reference = Reference::parse(include_str!("../reference/slotted_lever.csv"));
+        let reference = reference.scaled(size, Layout { ni: 1, n: 2, no: 2 }, &[0, 2, 3]);
+        check_against("slotted_lever", &m, &reference, &[0], &[], 4.0 * size, size);
+    }
+}
+
+/// The cam linkage's chain (a dyad, then a one-angle block and a linear length) and the cam
+/// rocker's dyad moved by its lift law at extreme sizes; the pressure angle does not scale.
+#[test]
+fn cam_linkages_at_extreme_sizes_match_the_50_digit_reference() {
+    for size in extreme_sizes() {
+        let m = CamLinkage {
+            e: 10.0 * size,
+            r_cam: 40.0 * size,
+            r_roller: 12.0 * size,
+            a_x: 0.0,
+            a_y: 80.0 * size,
+            l_arm: 60.0 * size,
+            l_out: 50.0 * size,
+            delta: 140.0 * PI / 180.0,
+            l_rod: 150.0 * size,
+            h: 130.0 * size,
+        };
+        let reference = Reference::parse(include_str!("../reference/cam_linkage.csv"));
+        let reference = reference.scaled(size, Layout { ni: 1, n: 4, no: 7 }, &[3, 4, 5, 6, 7, 8, 9]);
+        check_against("cam_linkage", &m, &reference, &[3], &[6], 150.0 * size, size);
+        let m = HarmonicCamRocker {
+            lift: 20.0 * size,
+            y0: 60.0 * size,
+            l_rod: 70.0 * size,
+            c: 40.0 * size,
+            d_x: -40.0 * size,
+            d_y: 140.0 * size,
+        };
+        let reference = Reference::parse(include_str!("../reference/harmonic_cam_rocker.csv"));
+        let reference = reference.scaled(size, Layout { ni: 1, n: 2, no: 4 }, &[2, 3, 4, 5]);
+        check_against("harmonic_cam_rocker", &m, &reference, &[], &[], 140.0 * size, size);
+    }
 }
