@@ -56,7 +56,9 @@
 //!   gravity are no positions, and a vector scaled by a length, `r * (phi, 0)`, has lengths for
 //!   coordinates. Nor does a scalar sum, difference or `eq` put such an angle beside a length (a
 //!   name written elsewhere as a coordinate of a position or as the length of `@`): `eq e: s ==
-//!   phi;` with `s` a slider's travel is a compile error that says to write `s == r * phi`.
+//!   phi;` with `s` a slider's travel is a compile error that says to write `s == r * phi`, and
+//!   so is `x + psi` in a `loop`, `let`, `point` or `output` alike (a reported value that mixes
+//!   the two changes with the unit of length as much as an equation does).
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

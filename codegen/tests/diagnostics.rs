@@ -925,11 +925,12 @@ fn each_angle_in_a_centre_of_mass_is_reported_once() {
     assert!(e[1].starts_with("`phi` is an angle ("), "{e:#?}");
 }
 
-/// An angle beside a length, in an `eq` or in a sum of a `loop`, `eq` or `let`, makes a
-/// mechanism that changes with the unit of length: a length is a name written bare as a
-/// coordinate of a position or as the length of `@`, an angle one that turns a link (or is in
-/// degrees). Names of no known kind, a length times an angle, an angle beside a ratio of
-/// lengths (inside a sine) and an output's sum stay as written.
+/// An angle beside a length, in an `eq` or in a sum of a `loop`, `eq`, `let`, `point` or
+/// `output`, makes a mechanism or a value that changes with the unit of length: a length is a
+/// name written bare as a coordinate of a position or as the length of `@`, an angle one that
+/// turns a link (or is in degrees). An output's or point's sum is refused as the same sum named
+/// by a `let` is. Names of no known kind, a length times an angle and an angle beside a ratio of
+/// lengths (inside a sine) stay as written.
 #[test]
 fn an_angle_beside_a_length_is_a_unit_mix() {
     let head = "params r, l, e0 = deg(3); input phi; unknowns psi, x, s; loop c: r @ phi == (x, s) + l @ psi;";
@@ -939,6 +940,10 @@ fn an_angle_beside_a_length_is_a_unit_mix() {
         ("eq e: s == l * cos(psi) + e0;", "l * cos(psi) + e0", "e0", "l * cos(psi)"),
         ("eq e: s == r * phi; let d = x + psi; output o = d;", "x + psi", "psi", "x"),
         ("eq e: s == r * phi; let d = x - phi; output o = d * l;", "x - phi", "phi", "x"),
+        ("eq e: s == r * phi; output o = x + psi;", "x + psi", "psi", "x"),
+        ("eq e: s == r * phi; output o = x - 2 * psi;", "x - 2 * psi", "2 * psi", "x"),
+        ("eq e: s == r * phi; point p = (x + psi, 0);", "x + psi", "psi", "x"),
+        ("eq e: s == r * phi; point p = (l + phi, s);", "l + phi", "phi", "l"),
     ] {
         let e = errors(&format!("pub struct S {{ {head} {body} }}"));
         assert_eq!(e.len(), 1, "{body}: {e:#?}");
@@ -952,9 +957,8 @@ fn an_angle_beside_a_length_is_a_unit_mix() {
         "params r, l, k; input phi; unknowns psi, x, s; loop c: r @ phi == (x, s) + l @ psi; eq e: s == k + phi;",
         "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; output o = sin(x / l + phi) + x - r;",
         "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; output o = psi - phi;",
-        // An output is a reported value: a mixed sum there is of no kind kinloop names
-        // (`tests/kinematics/quantity_kinds.rs`), and shapes no solution.
-        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; output o = x + psi;",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; output o = x / l + psi;",
+        "params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; point p = (x + r * psi, l);",
     ] {
         assert_eq!(errors(&format!("pub struct S {{ {body} }}")), Vec::<String>::new(), "{body}");
     }

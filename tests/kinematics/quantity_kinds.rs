@@ -19,7 +19,7 @@ kinloop::mechanism! {
         output ratio = y / h;
         output angle = atan2(y, h);
         output reach = sqrt(h ^ 2 + y ^ 2);
-        output mixed = y + phi;
+        output area = h * y;
         output scaled = k * y;
     }
 }

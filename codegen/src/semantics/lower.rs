@@ -43,12 +43,13 @@ pub struct Lowerer {
     /// position only where a loop or point (or such a `let`) uses it.
     pub(super) let_uses: Vec<(Place, String)>,
     /// The scalar sums, differences and `eq`s of the items that shape the solution (a `loop`,
-    /// an `eq`, a `let`), for the check that they do not put an angle beside a length
-    /// ([`super::polar`]). A `point`'s or `output`'s sum is a reported value, of no kind
-    /// kinloop names if it is mixed.
+    /// an `eq`, a `let`) and of the values reported (a `point`, an `output`), for the check
+    /// that they do not put an angle beside a length ([`super::polar`]): such a value changes
+    /// with the unit of length wherever it is written, inline or named by a `let`.
     pub(super) scalar_pairs: Vec<ScalarPair>,
-    /// Set while a `let` is lowered: its sums are noted in `scalar_pairs`, as an equation's are.
-    pub(super) in_let: bool,
+    /// Set while a `let`, a `point` or an `output` is lowered: its sums are noted in
+    /// `scalar_pairs`, as an equation's are.
+    pub(super) notes_sums: bool,
     /// The coordinates refused as angles by [`super::polar`], checked before the dynamics so
     /// that a centre of mass or a force's point that has one is not reported again.
     pub(super) refused_positions: std::collections::HashSet<NodeId>,
@@ -319,7 +320,7 @@ impl Lowerer {
             left_to_dynamics: Default::default(),
             dynamics_positions: 0,
             scalar_pairs: Vec::new(),
-            in_let: false,
+            notes_sums: false,
             defining: None,
             later_uses: Default::default(),
             degree_lets: Default::default(),
@@ -448,7 +449,7 @@ impl Lowerer {
                     BinOp::Sub => Some("subtracts"),
                     _ => None,
                 };
-                if self.in_equation || self.in_let {
+                if self.in_equation || self.notes_sums {
                     let pair = verb.and_then(|v| ScalarPair::of(&self.graph, e.range(), v, (lhs, rhs), l, r));
                     self.scalar_pairs.extend(pair);
                 }

@@ -364,9 +364,9 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         }
         ItemKind::Decls(..) => {}
         ItemKind::Let { name, value } => {
-            lw.in_let = true;
+            lw.notes_sums = true;
             let lowered = lw.lower_in(Place::Let(super::scope::key(name)), |lw| lw.lower_definition(name, value));
-            lw.in_let = false;
+            lw.notes_sums = false;
             if matches!(lowered, Some(Val::S(_))) && lw.in_degrees(value) {
                 lw.degree_lets.insert(super::scope::key(name));
             }
@@ -382,8 +382,16 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
                 None => lw.poison(name),
             }
         }
-        ItemKind::Point { name, value } => lower_point(lw, item, name, value, out),
-        ItemKind::Output { name, value } => lower_output(lw, item, name, value, out),
+        ItemKind::Point { name, value } => {
+            lw.notes_sums = true;
+            lower_point(lw, item, name, value, out);
+            lw.notes_sums = false;
+        }
+        ItemKind::Output { name, value } => {
+            lw.notes_sums = true;
+            lower_output(lw, item, name, value, out);
+            lw.notes_sums = false;
+        }
         ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
             lw.in_equation = true;
             lw.written_here.clear();

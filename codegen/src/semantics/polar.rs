@@ -38,7 +38,9 @@
 //!
 //! A scalar sum, difference or `eq` that puts an angle beside a length (`s == phi`, `x + psi`,
 //! with `s` and `x` written elsewhere as coordinates of positions or lengths of `@`) is refused
-//! at the operation: its value too changes with the unit of length.
+//! at the operation, in an equation, a `let`, a `point` or an `output` alike: its value too
+//! changes with the unit of length. A sum that is the angle of a polar term already told to mix
+//! the two (`psi @ (phi + e)`) is not told again.
 //!
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
@@ -82,6 +84,9 @@ pub(super) struct Angles {
     /// The angles of polar terms found swapped (`l` in `psi @ l`): lengths written in the
     /// wrong place, angles only by that mistake, so no angle anywhere else.
     swapped: HashSet<Leaf>,
+    /// The angles of polar terms told to mix an angle and a length (`phi + e` in
+    /// `psi @ (phi + e)`): a sum within one is that mistake, told once.
+    told_mixed: Vec<NodeId>,
 }
 
 impl Angles {
@@ -99,6 +104,7 @@ impl Angles {
             lengths: HashSet::new(),
             placed_as_lengths: HashSet::new(),
             swapped: HashSet::new(),
+            told_mixed: Vec::new(),
         }
     }
 
@@ -582,6 +588,7 @@ fn mixed(lw: &Lowerer, angles: &mut Angles, t: &NamedLength, angle: Leaf, others
     let (shown, angle) = (bare_angle(t), name(angle));
     let (names, n) = (others.iter().map(|&l| name(l)).collect::<Vec<_>>().join(" or "), others.len());
     angles.swapped.extend(others);
+    angles.told_mixed.push(t.angle_node);
     let (verb, pronoun) = if n == 1 { ("is a length", "it") } else { ("are lengths", "them") };
     format!(
         "`{shown}` holds {angle}, an angle, so swapping the two cannot help; {}, and if {names} {verb}, `{shown}` \
@@ -691,10 +698,27 @@ pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
         return;
     }
     for p in pairs {
+        if within_told_mixed(lw, angles, &p) {
+            continue;
+        }
         if let Some(e) = angle_beside_length(lw, angles, &p) {
             lw.errors.push(e);
         }
     }
+}
+
+/// Whether the pair `p` is made of the leaves of a polar term's angle already told to mix an
+/// angle and a length (`phi + e` of a point's `psi @ (phi + e)`): one mistake, told once.
+fn within_told_mixed(lw: &Lowerer, angles: &Angles, p: &ScalarPair) -> bool {
+    if angles.told_mixed.is_empty() {
+        return false;
+    }
+    let [(a, _), (b, _)] = p.sides;
+    let leaves = lw.graph.leaves_of(&[a, b]);
+    angles.told_mixed.iter().any(|&n| {
+        let of_term = lw.graph.leaves_of(&[n]);
+        leaves.iter().all(|l| of_term.contains(l))
+    })
 }
 
 /// The error for the pair `p` if one side is an angle and the other a length.
