@@ -566,6 +566,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<(), Failed> {
     let (read, written) = cli.command.files();
     output::not_read(&read, &written)?;
+    output::not_standard_output(&written)?;
     match cli.command {
         Command::Check { decl } => {
             let model = match decl.load() {

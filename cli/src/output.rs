@@ -106,6 +106,56 @@ pub fn not_read(read: &[&Path], written: &[(&str, &Path)]) -> Result<(), Failed>
     Ok(())
 }
 
+/// Refuses a file to write that standard output is redirected to (`kinloop sweep four_bar.kl
+/// --events out.csv > out.csv`): the table written to standard output and the file written by
+/// the option would overwrite each other's bytes, and the command would succeed with neither
+/// whole. A usage error ([`exit::USAGE`]) naming the option, before anything is written. Only
+/// where standard output is a regular file (a terminal, pipe or `/dev/null` is no file to lose).
+pub fn not_standard_output(written: &[(&str, &Path)]) -> Result<(), Failed> {
+    let Some(stdout) = standard_output_file() else { return Ok(()) };
+    for &(option, out) in written {
+        if std::fs::metadata(out).is_ok_and(|m| m.is_file() && same_inode(&m, &stdout)) {
+            eprintln!(
+                "error: {option} {} is the file standard output is redirected to: the two would overwrite \
+                 each other; name another file, or redirect standard output elsewhere",
+                out.display()
+            );
+            return Err(Failed(exit::USAGE));
+        }
+    }
+    Ok(())
+}
+
+/// The metadata of the regular file standard output is redirected to, if it is one (on systems
+/// that tell a file by its device and inode).
+fn standard_output_file() -> Option<std::fs::Metadata> {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd;
+        let fd = std::io::stdout().as_fd().try_clone_to_owned().ok()?;
+        std::fs::File::from(fd).metadata().ok().filter(std::fs::Metadata::is_file)
+    }
+    #[cfg(not(unix))]
+    {
+        None
+    }
+}
+
+/// Whether two regular files' metadata are of one file (the same device and inode); `false`
+/// where the system does not tell.
+fn same_inode(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        (a.dev(), a.ino()) == (b.dev(), b.ino())
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (a, b);
+        false
+    }
+}
+
 /// Whether `a` and `b` are the same regular file (the same device and inode where the system
 /// has them, else the same canonical path): `false` where either is missing or not a regular
 /// file (a device such as `/dev/null` may be read and written alike).

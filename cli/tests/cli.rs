@@ -1025,6 +1025,58 @@ fn an_output_that_is_the_declaration_read_is_refused() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A file to write that standard output is redirected to (`--events out.csv > out.csv`, or the
+/// same file by a link) is refused as a usage error before anything is written: the table went
+/// to standard output and the events over it, from the file's start, and the command succeeded
+/// with three lines of events left of a table of 1321 rows.
+#[cfg(unix)]
+#[test]
+fn an_output_that_is_the_redirected_standard_output_is_refused() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("stdout-output-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    const FOUR_BAR: &str = "a=3,b=2,c=2.5,d=4";
+    let four_bar = shipped("four_bar.kl");
+    let cases: [(&[&str], &str, &str); 3] = [
+        (&["trace", &four_bar, "--from", "0", "--to", "180", "--deg", "--params", FOUR_BAR], "--events", "csv"),
+        (&["sweep", &four_bar, "--from", "0", "--to", "1", "--params", FOUR_BAR], "--events", "csv"),
+        (&["cam", &shipped("dwell_cam.kl"), "--point", "follower", "--guide", "0,1"], "--plot", "svg"),
+    ];
+    for (args, option, ext) in cases {
+        let same = dir.join(format!("same.{ext}"));
+        let link = dir.join(format!("link.{ext}"));
+        for target in [&same, &link] {
+            let _ = (std::fs::remove_file(&same), std::fs::remove_file(&link));
+            let stdout = std::fs::File::create(&same).unwrap();
+            std::os::unix::fs::symlink(&same, &link).unwrap();
+            let mut full = args.to_vec();
+            full.extend([option, target.to_str().unwrap()]);
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+                .args(&full)
+                .stdout(stdout)
+                .output()
+                .expect("the kinloop binary runs");
+            let e = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(2), "{full:?}: {e}");
+            let said = format!("{option} {} is the file standard output is redirected to", target.display());
+            assert!(e.contains(&said), "{e}");
+            assert_eq!(std::fs::metadata(&same).unwrap().len(), 0, "{full:?} wrote into the file");
+        }
+        // Standard output redirected to another file: both are written, whole.
+        let (table, side) = (dir.join("table.out"), dir.join(format!("side.{ext}")));
+        let mut full = args.to_vec();
+        full.extend([option, side.to_str().unwrap()]);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+            .args(&full)
+            .stdout(std::fs::File::create(&table).unwrap())
+            .output()
+            .expect("the kinloop binary runs");
+        assert_eq!(out.status.code(), Some(0), "{full:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(std::fs::metadata(&side).unwrap().len() > 0, "{full:?} wrote no {option} file");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// `--singular-pivot` sets the smallest pivot ratio the commands that sweep accept: a slotted
 /// rocker whose slide passes 1e-8 of the crank's radius from the pivot stops a default sweep
 /// with the advice to lower it (and the option that does), and lowered, the sweep completes and
