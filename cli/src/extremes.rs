@@ -10,6 +10,8 @@ use crate::solve::{degrees, in_units, model_inputs, solve_failed};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
+use kinloop_runtime::analysis::MAX_SEARCH_POINTS;
+use kinloop_runtime::paths::sweep::{MAX_INPUT_STEP, MAX_TURNS};
 use kinloop_runtime::{Error, Number, QuantityKind};
 
 /// What `kinloop extremes` was asked.
@@ -94,6 +96,15 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;
+    // The search between samples farther apart than a sweep's step keeps at most
+    // `MAX_SEARCH_POINTS` points: a range too long for the samples asked for is refused here,
+    // before the sweep (it was refused after sweeping the whole range, ten seconds over a
+    // million turns, with a count of samples beyond those `--samples` takes). A range longer
+    // than a sweep follows is left to the sweep's own refusal, which says so.
+    let least = model.samples_to_search(&from, &to, &guess).map_err(|e| failed(&e))?;
+    if least > req.samples && (least - 1) as f64 <= STEPS_IN_RANGE_LIMIT {
+        return Err(too_few_to_search(req, least, &from, &to, &input_kinds));
+    }
     let bar = progress::bar(&format!("{name}: sampling"), req.samples.saturating_add(columns.len()), req.samples);
     let sampled =
         model.sampled_reporting(&from, &to, req.samples, &guess, model.sweep_config(), |n| bar.set_position(n as u64));
@@ -161,6 +172,45 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("{note}");
     }
     Ok(())
+}
+
+/// The natural steps ([`MAX_INPUT_STEP`]) over the most turns a sweep follows ([`MAX_TURNS`]),
+/// with the search's allowance for rounding: a range needing more samples than this is longer
+/// than a sweep follows, refused by the sweep itself in those words.
+const STEPS_IN_RANGE_LIMIT: f64 = MAX_TURNS * std::f64::consts::TAU / MAX_INPUT_STEP * (1.0 + 1e-5);
+
+/// The usage error of `--samples` too few for the search between them ([`MAX_SEARCH_POINTS`]
+/// points at most, a sweep's step apart), `least` the fewest that would do: that count where
+/// `--samples` takes it, otherwise the longest range the most samples search, as a `--to`.
+fn too_few_to_search(req: &Request, least: usize, from: &[f64], to: &[f64], kinds: &[QuantityKind]) -> Failed {
+    let why = format!(
+        "extremes searches between samples farther apart than a sweep's step (a quarter radian of an angle \
+         input) at points that far apart, and keeps at most {MAX_SEARCH_POINTS} of them"
+    );
+    if least <= samples::MAX_SAMPLES {
+        return exit::usage(format!(
+            "--samples {}: the samples are too far apart over --from {} --to {}: {why}; give at least {least} \
+             samples, or a shorter range",
+            req.samples, req.from, req.to
+        ));
+    }
+    // Beyond the samples taken, the search needs about one sample per step (`least - 1` steps):
+    // the most samples cover that fraction of the range, less a thousandth.
+    let fraction = 0.999 * (samples::MAX_SAMPLES - 1) as f64 / (least - 1) as f64;
+    let ends: Vec<String> = from
+        .iter()
+        .zip(to)
+        .zip(kinds)
+        .map(|((a, b), k)| format!("{}", six_digits(written(*k, req.deg, a + (b - a) * fraction))))
+        .collect();
+    exit::usage(format!(
+        "--from {} --to {}: too long a range for extremes: {why}, which over this range needs {least} samples, \
+         more than the {} --samples takes; give --to at most {} (or split the range)",
+        req.from,
+        req.to,
+        samples::MAX_SAMPLES,
+        ends.join(",")
+    ))
 }
 
 /// `v` rounded to 6 significant digits, for a note: a rest's ends are located where the

@@ -254,17 +254,53 @@ fn samples_too_fine(model: &Model, req: &Request, from: &[f64], to: &[f64], kind
 /// The usage error of a range longer than a sweep follows ([`Error::RangeTooLong`], which a
 /// sweep or a trace finds before its first step): how far apart `--from` and `--to` may be, in the units
 /// given. `None` for any other error.
+///
+/// The sweep counts the turns in the unit its steps are measured in (a radian for an input that
+/// the equations turn through sines and cosines; for another, even an angle taken within its
+/// turn by `wrap`, the unit the equations give it), so the span allowed is said in the units
+/// given, from the turns counted: they grow in proportion to the span. It was said as `2 pi 1e6`
+/// radians whatever the input, and a dwell cam's `--to 6283185` was refused with the advice to
+/// give at most 6283185.3.
 pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: bool) -> Option<Failed> {
     let &Error::RangeTooLong { turns, max_turns, .. } = e else { return None };
-    let span = match deg {
-        true => format!("{:.0} deg", 360.0 * max_turns),
-        false => format!("{:.1} rad", std::f64::consts::TAU * max_turns),
+    let numbers = |s: &str| s.split(',').map(|v| v.trim().parse::<f64>().ok()).collect::<Option<Vec<f64>>>();
+    let unit = if deg { " in the units given (degrees for an angle)" } else { " in the units given" };
+    let allowed = match (numbers(from), numbers(to)) {
+        (Some(a), Some(b)) if a.len() == b.len() && turns.is_finite() && turns > 0.0 => {
+            let fraction = max_turns / turns;
+            let spans: Vec<f64> = a.iter().zip(&b).map(|(a, b)| shortened((b - a).abs() * fraction)).collect();
+            let ends: Vec<String> = a
+                .iter()
+                .zip(&b)
+                .zip(&spans)
+                .map(|((a, b), span)| format!("{}", if b < a { a - span } else { a + span }))
+                .collect();
+            match spans.as_slice() {
+                [span] => format!("at most {span} apart{unit} (--to {})", ends[0]),
+                _ => format!("at most --to {}{unit}", ends.join(",")),
+            }
+        }
+        _ => format!("at most {max_turns:e} turns apart"),
     };
     Some(exit::usage(format!(
-        "{name}: --from {from} --to {to} spans {turns:.3e} turns of the inputs, more than the {max_turns:e} turns a \
-         sweep or a trace follows: give --from and --to at most {max_turns:e} turns apart ({span} of an angle \
-         input); split a longer range, or reduce a periodic input by whole turns"
+        "{name}: --from {from} --to {to} spans {turns:.3e} turns of the inputs as a sweep counts them (a turn: 2 pi \
+         of the unit its steps are measured in, a radian for an input in sines and cosines), more than the \
+         {max_turns:e} turns a sweep or a trace follows: give --from and --to {allowed}; split a longer range, or \
+         reduce a periodic input by whole turns"
     )))
+}
+
+/// `v` (positive) to eight significant digits, rounded down unless within a billionth of `v`
+/// (which the range's check allows for the rounding of the inputs given): a span said as
+/// allowed that is within the limit, and readable (`6283185.3`, `360000000`).
+fn shortened(v: f64) -> f64 {
+    if !(v > 0.0 && v.is_finite()) {
+        return v;
+    }
+    let unit = 10f64.powi(v.log10().floor() as i32 - 7);
+    let near = (v / unit).round() * unit;
+    let r = if near <= v * (1.0 + 1e-9) { near } else { (v / unit).floor() * unit };
+    if r > 0.0 { r } else { v }
 }
 
 /// The columns the events' file writes before the inputs and the unknowns.

@@ -624,10 +624,10 @@ fn a_range_of_too_many_turns_is_a_usage_error() {
     // In degrees, from a turn's multiple to its opposite: a range from 0 this long is beyond
     // the degrees that convert to radians precisely (`degrees_too_many_turns_out_to_convert_are_refused`).
     for (command, from, to, deg, span) in [
-        ("sweep", "0", "1e7", false, "6283185.3"),
-        ("sweep", "-2.5e8", "2.5e8", true, "360000000 deg"),
-        ("extremes", "0", "1e7", false, "6283185.3"),
-        ("animate", "0", "1e7", false, "6283185.3"),
+        ("sweep", "0", "1e7", false, "at most 6283185.3 apart in the units given (--to 6283185.3)"),
+        ("sweep", "-2.5e8", "2.5e8", true, "at most 360000000 apart in the units given (degrees for an angle)"),
+        ("extremes", "0", "1e7", false, "at most 6283185.3 apart"),
+        ("animate", "0", "1e7", false, "at most 6283185.3 apart"),
     ] {
         let mut args = vec![command, four_bar.as_str(), "--from", from, "--to", to, "--params", params];
         if deg {
@@ -639,12 +639,34 @@ fn a_range_of_too_many_turns_is_a_usage_error() {
         let out = kinloop(&args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{command} --to {to}: {err}");
-        for what in [&format!("--from {from} --to {to}"), "turns", "at most 1e6 turns apart", span] {
+        for what in [&format!("--from {from} --to {to}"), "turns", "the 1e6 turns a sweep", span] {
             assert!(err.contains(what), "{command} --to {to}: `{what}` missing: {err}");
         }
         assert!(out.stdout.is_empty(), "{command}: {}", String::from_utf8_lossy(&out.stdout));
     }
     assert!(!std::path::Path::new(&out_file).exists());
+}
+
+/// The span allowed is said in the units given, and is allowed: the dwell cam's cam angle, taken
+/// within its turn by `wrap` (no sine or cosine), has its turns counted in the unit its equations
+/// give it, so that `--to 6283185` is more than a sweep follows. It was refused with "give --from
+/// and --to at most 1e6 turns apart (6283185.3 rad of an angle input)", exactly what was given.
+#[test]
+fn a_range_too_long_says_the_span_allowed_in_the_units_given() {
+    let dwell = shipped("dwell_cam.kl");
+    let out = kinloop(&["sweep", &dwell, "--from", "0", "--to", "6283185", "--samples", "2"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(!err.contains("6283185.3"), "{err}");
+    let to = err.split("(--to ").nth(1).and_then(|r| r.split(')').next()).expect("a --to allowed");
+    let allowed: f64 = to.parse().unwrap_or_else(|e| panic!("{to}: {e}: {err}"));
+    assert!(allowed > 4e6 && allowed < 6283185.0, "{err}");
+    assert!(err.contains(&format!("at most {to} apart in the units given")), "{err}");
+    // That range is followed: a trace of a few points from its start is not refused.
+    let out = kinloop(&["trace", &dwell, "--from", "0", "--to", to, "--max-points", "5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("turns a sweep or a trace follows"), "{err}");
+    assert_eq!(out.status.code(), Some(0), "{err}");
 }
 
 /// An opening bracket never closed before the brace that ends the block is reported where it

@@ -408,3 +408,28 @@ fn a_time_input_has_its_unit() {
     assert!(check.contains("inputs: t [unit of t]\n"), "{check}");
     let _ = std::fs::remove_file(&file);
 }
+
+/// A range too long for the points searched between samples is refused before the sweep: with
+/// the fewest samples that do, where `--samples` takes that many, otherwise with the `--to` the
+/// most samples search. A million turns in three samples swept for ten seconds, then asked for
+/// 25,132,741 samples, beyond the 10,000,000 `--samples` takes.
+#[test]
+fn a_range_too_long_to_search_is_refused_with_advice_that_can_be_followed() {
+    let coupler = shipped("coupler_four_bar.kl");
+    let out = kinloop(&["extremes", &coupler, "--from", "0", "--to", "6283185", "--samples", "3"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("too long a range for extremes") && err.contains("more than the 10000000"), "{err}");
+    let to: f64 =
+        err.split("give --to at most ").nth(1).and_then(|r| r.split([' ', '\n']).next()).unwrap().parse().unwrap();
+    // About 400,000 turns.
+    assert!(to > 2.4e6 && to < 2.6e6, "{err}");
+    assert!(!err.contains("give at least"), "{err}");
+    assert!(out.stdout.is_empty());
+    // 20,000 turns in the default 361 samples: a count that `--samples` takes.
+    let out = kinloop(&["extremes", &coupler, "--from", "0", "--to", "125664", "--samples", "361"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    let least: usize = err.split("give at least ").nth(1).and_then(|r| r.split(' ').next()).unwrap().parse().unwrap();
+    assert!(least > 361 && least <= 10_000_000, "{err}");
+}

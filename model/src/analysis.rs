@@ -32,7 +32,7 @@
 
 use crate::mechanism::ModelKernel;
 use crate::model::Model;
-use kinloop_runtime::analysis::SampledOf;
+use kinloop_runtime::analysis::{SampledOf, samples_to_search};
 use kinloop_runtime::dims::Heap;
 use kinloop_runtime::metrics::{LimitReport, limits_of};
 use kinloop_runtime::{Error, SweepConfig};
@@ -101,6 +101,16 @@ impl Model {
         let k = self.kernel(config)?;
         let v = |s: &[f64]| Heap(s.into());
         SampledOf::over_reporting(k, v(from), v(to), samples, v(guess), config, progress)
+    }
+
+    /// The fewest samples with which a search for extremes over the path from `from` to `to`
+    /// (its length measured at `guess`) fits between them: the runtime's
+    /// [`samples_to_search`](kinloop_runtime::analysis::samples_to_search), known before any
+    /// step, so that a range too long for the samples asked for is refused before the sweep.
+    pub fn samples_to_search(&mut self, from: &[f64], to: &[f64], guess: &[f64]) -> Result<usize, Error> {
+        let k = self.kernel(self.sweep_config)?;
+        let v = |s: &[f64]| Heap(s.into());
+        samples_to_search(&k, &v(from), &v(to), &v(guess))
     }
 
     /// Dead centres and limit positions of a single-input model over its input from `from` to

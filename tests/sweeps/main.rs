@@ -16,6 +16,7 @@ mod events_extreme_scales;
 mod sweep_any_step;
 mod sweep_api;
 mod sweep_at;
+mod sweep_budget;
 mod sweep_dense;
 mod sweep_drift;
 mod sweep_judged_length;

@@ -57,7 +57,7 @@ mod sampled;
 pub mod unbalance;
 
 pub use column::{Column, ColumnIndex, ColumnOf};
-pub use sampled::{MAX_SEARCH_POINTS, Sampled, SampledOf};
+pub use sampled::{MAX_SEARCH_POINTS, Sampled, SampledOf, samples_to_search};
 
 pub use dwell::{Dwell, dwells};
 pub use extremes::{Extreme, GlobalRange, LocalExtreme, bracketed_root, extremes, global_range, maximize};

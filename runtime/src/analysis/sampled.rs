@@ -92,6 +92,51 @@ impl<V: Store> Line<V> {
 /// apart, the samples are refused with the count that would do.
 pub const MAX_SEARCH_POINTS: usize = 1 << 18;
 
+/// The fewest samples (at least 3), both ends included, with which a search for extremes
+/// ([`SampledOf::range`], `extremes`, `dwells`, `peak`) over the straight path from `from` to `to`
+/// solves at most [`MAX_SEARCH_POINTS`] points between them: the path's length measured as the
+/// sweep measures it (in its inputs' units at `guess`), cut into equal gaps. Known before any
+/// step, so that a caller can refuse a range too long for its samples before sweeping it (the
+/// search refuses it too, after the sweep). Beyond [`MAX_SAMPLES`](super::MAX_SAMPLES) where no
+/// count a sampled sweep takes will do, `usize::MAX` where the count is not finite. A length
+/// input whose unit depends on the position may need a few more, measured at the solved start.
+///
+/// Up to [`MAX_SEARCH_POINTS`] natural steps (about 10,000 turns of an angle input) any count
+/// will do; from twice that on, one sample per natural step, a quarter radian of an angle input.
+pub fn samples_to_search<K: Kernel>(k: &K, from: &X<K>, to: &X<K>, guess: &Q<K>) -> Result<usize, Error> {
+    check_sizes(k, "a search's samples", &[from, to], &[guess])?;
+    let path = Path::new(from.clone(), to.clone());
+    let natural = Metric::at(k, &path, from, guess).input_len / MAX_INPUT_STEP;
+    Ok(least_search_samples(natural))
+}
+
+/// The fewest samples (at least 3) whose equal gaps over a path of `natural` natural steps need
+/// at most [`MAX_SEARCH_POINTS`] points between them: `g` gaps need `g (ceil(natural / g) - 1)`
+/// (each gap cut into `ceil(natural / g)` parts), the fewest for the most parts `c` a gap may
+/// be cut into, `g = ceil(natural / c)`. Measured a millionth longer: a gap of exactly `c`
+/// natural steps whose samples round apart a hair farther is cut into `c + 1`.
+fn least_search_samples(natural: f64) -> usize {
+    let l = natural * (1.0 + 1e-6);
+    let max = MAX_SEARCH_POINTS as f64;
+    if !l.is_finite() || l >= 1e18 {
+        return usize::MAX;
+    }
+    if l <= max {
+        return 3;
+    }
+    // Past `l / (l - max)` parts, `g (c - 1) >= l - l / c` exceeds `max`; down to one part (no
+    // point between), which always fits. At most `max` iterations, off any step's path.
+    let mut c = (l / (l - max)).floor();
+    while c > 1.0 {
+        let g = (l / c).ceil();
+        if g * (c - 1.0) <= max {
+            return (g as usize + 1).max(3);
+        }
+        c -= 1.0;
+    }
+    (l.ceil() as usize + 1).max(3)
+}
+
 /// The points where a search for extremes looks ([`SampledOf::search`]): the samples,
 /// borrowed, and the points solved between those farther apart than a sweep's natural step.
 struct Search<'a, K: Kernel> {
@@ -550,11 +595,22 @@ impl<K: Kernel> SampledOf<K> {
             .collect();
         let between: usize = parts.iter().map(|n| n - 1).sum();
         if between > MAX_SEARCH_POINTS {
+            // The fewest samples that would do, from the path's length in natural steps (and
+            // more than these, should the samples' own gaps, moved by a crossing, need more).
+            let natural = per_param * (last - first) / MAX_INPUT_STEP;
+            let least = least_search_samples(natural).max(self.s.len() + 1);
+            let advice = if least <= super::MAX_SAMPLES {
+                format!("give at least {least} samples, or a shorter range")
+            } else {
+                format!(
+                    "the range is too long to search: it would need {least} samples, more than the {} a sampled \
+                     sweep takes; give a shorter range",
+                    super::MAX_SAMPLES
+                )
+            };
             return Err(Error::InvalidArgument(format!(
                 "the samples are too far apart to search between: {between} points a sweep's natural step \
-                 apart would be solved between them, more than the {MAX_SEARCH_POINTS} a search keeps; give \
-                 at least {} samples, or a shorter range",
-                parts.iter().sum::<usize>() + 1
+                 apart would be solved between them, more than the {MAX_SEARCH_POINTS} a search keeps; {advice}"
             )));
         }
         let mut grid = Search { s: vec![first], states: vec![Cow::Borrowed(&self.states[0])], gaps: Vec::new() };
@@ -996,5 +1052,37 @@ impl<K: Kernel> SampledOf<K> {
         self.searched(c, |search, corners, eval| {
             unbalance::unbalance_across(&jets, search, corners, eval, removed, scale)
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The points a search solves between `g` equal gaps over `l` natural steps.
+    fn between(l: f64, g: f64) -> f64 {
+        g * ((l / g).ceil() - 1.0)
+    }
+
+    /// The count advised fits the search, even a hair longer, and one fewer does not the
+    /// millionth longer path it allows for (where more than three are needed); beyond twice the points kept, one sample per natural step.
+    /// The advice was one sample per natural step however few would do, and beyond the
+    /// samples a sweep takes said nothing of it.
+    #[test]
+    fn the_fewest_samples_to_search_fit_and_one_fewer_does_not() {
+        let max = MAX_SEARCH_POINTS as f64;
+        for l in [10.0, max, max + 0.5, max + 1.0, 1.3 * max, 1.5 * max, 1.99 * max, 2.0 * max, 2.5 * max, 2.5e7] {
+            let n = least_search_samples(l);
+            let g = (n - 1) as f64;
+            assert!(between(l * (1.0 + 5e-7), g) <= max, "{l}: {n} samples");
+            if n > 3 {
+                assert!(between(l * (1.0 + 1e-6), g - 1.0) > max, "{l}: {n} samples, one fewer fits");
+            }
+            if l > 2.0 * max {
+                assert_eq!(n as f64, (l * (1.0 + 1e-6)).ceil() + 1.0, "{l}");
+            }
+        }
+        assert_eq!(least_search_samples(f64::INFINITY), usize::MAX);
+        assert_eq!(least_search_samples(f64::NAN), usize::MAX);
     }
 }

@@ -73,10 +73,18 @@ use crate::table::Table;
 use crate::trig::Rotating;
 use std::marker::PhantomData;
 
-/// Bound on the internal steps between two samples (attempts, accepted or not) beyond the
-/// steps the sample spacing needs at the largest step (four attempts each): a sweep never loops
-/// without bound.
-const MAX_ATTEMPTS_PER_SAMPLE: u64 = 100_000;
+/// The reserve of a sweep's step budget: the attempts (steps accepted or not) it may take, beyond
+/// four for each step of the largest length, to advance by one stride, the sample spacing or the
+/// inputs' natural step ([`MAX_INPUT_STEP`]), the shorter (see [`SweepOf::max_attempts`]).
+///
+/// The budget is counted in windows of that many attempts, each of which must advance the sweep
+/// by a stride (or reach the next sample): proportional to the input actually covered, so that a
+/// sweep that advances is never stopped for the length of the range between two samples, and one
+/// that does not is stopped after one window, whatever the samples. Per sample interval, as it
+/// was, the budget failed the dwell cam (whose corners take about thirteen times the natural
+/// steps a turn) over 1,080 turns between two samples, and let a sweep that stalled in two
+/// samples over a million turns take 1e8 attempts before it stopped.
+const ATTEMPTS_RESERVE: u64 = 100_000;
 
 /// Largest step of the inputs, in their units (radians for an angle input, the mechanism's size
 /// for a length), whatever the sample spacing: the number of samples asked for is the output
@@ -182,8 +190,12 @@ pub struct SweepOf<K: Kernel, S> {
     /// weigh a length as an angle and the bounds are the same in any unit of length (see
     /// [`in_unit`]).
     inv_unit: Q<K>,
-    /// The attempts a sample may take (see [`MAX_ATTEMPTS_PER_SAMPLE`]).
+    /// The attempts a window of the step budget holds (see [`ATTEMPTS_RESERVE`]): the reserve,
+    /// and four per step of the largest length that a stride ([`SweepOf::scale`]) takes.
     max_attempts: u64,
+    /// Where the window of the step budget under way began, `(sample, tau)`: set when a window
+    /// is spent (off the steps' path); a sample's first window begins at the sample before.
+    window: (usize, f64),
     next: usize,
     guess: Q<K>,
     /// Whether the first sample may restart (the configuration's `restarts`; the steps' own
@@ -344,7 +356,8 @@ where
             h_nat: f64::INFINITY,
             slope_floor: 0.0,
             inv_unit: d.q(),
-            max_attempts: MAX_ATTEMPTS_PER_SAMPLE,
+            max_attempts: ATTEMPTS_RESERVE,
+            window: (0, 0.0),
             next: 0,
             first_q: guess.clone(),
             guess,
@@ -392,12 +405,10 @@ where
     fn set_step_bounds(&mut self) {
         self.h_max = (self.spacing * self.cfg.max_step).min(self.h_nat);
         self.h_min = self.scale() * 0.5f64.powi(self.cfg.max_halvings.min(i32::MAX as u32) as i32);
-        // Four attempts per step the spacing needs at the largest step, and the fixed reserve
-        // (finite: `h_max` is at least `MIN_MAX_STEP` of the spacing or `h_nat`, bounded by
-        // `MAX_TURNS`).
-        let steps = (self.spacing / self.h_max).ceil();
-        self.max_attempts =
-            MAX_ATTEMPTS_PER_SAMPLE + if steps.is_finite() { (4.0 * steps).min(1e15) as u64 } else { 0 };
+        // Four attempts per step a stride needs at the largest step, and the fixed reserve
+        // (finite: `h_max` is at least `MIN_MAX_STEP` of the spacing or `h_nat`).
+        let steps = (self.scale() / self.h_max).ceil();
+        self.max_attempts = ATTEMPTS_RESERVE + if steps.is_finite() { (4.0 * steps).min(1e15) as u64 } else { 0 };
         // A slope in input units is the path's divided by `|delta|` (infinite for a path of no
         // length, which takes no step).
         self.slope_abs =
@@ -636,22 +647,55 @@ where
         }
     }
 
-    /// The error of a sweep that exhausted its step budget between two samples.
+    /// A window of the step budget is spent ([`ATTEMPTS_RESERVE`]): `Ok` where the sweep
+    /// advanced by a stride over it (a new window begins here), otherwise the error that stops
+    /// it. Off the steps' path: once per `max_attempts` attempts.
     #[cold]
-    fn no_progress(&self) -> Error {
+    #[inline(never)]
+    fn window_spent(&mut self) -> Result<(), Error> {
+        // A sample's first window began at the sample before (`tau` there; later than that only
+        // past a crossing that resumed beyond its sample, which counts a little of the way
+        // before this sample in its first window).
+        let start = if self.window.0 == self.next { self.window.1 } else { (self.next - 1) as f64 * self.spacing };
+        let advanced = self.tau - start;
+        if advanced >= self.scale() {
+            self.window = (self.next, self.tau);
+            return Ok(());
+        }
+        Err(self.out_of_steps(advanced))
+    }
+
+    /// The error of a sweep that spent a window of its step budget advancing by `advanced` (of
+    /// the path, less than a stride): where it advanced, said so, with what to do.
+    #[cold]
+    fn out_of_steps(&self, advanced: f64) -> Error {
         let x = self.path.at_tau(self.tau);
         if let Some(e) = self.coarse_error(x.as_ref(), None) {
             return e;
         }
-        Error::Branch {
-            message: format!(
-                "the sweep made no progress towards the next sample in {} steps (four per step of the \
-                 largest length the sample spacing needs, and a reserve): its steps keep being rejected \
-                 or cut far below that length (the solution curve is too rough here)",
-                self.max_attempts
-            ),
-            at: self.location(self.path.at_tau(self.tau).as_ref(), None),
-        }
+        let n = self.max_attempts;
+        let stride = if self.spacing <= self.h_nat {
+            "the way to the next sample"
+        } else {
+            "a quarter of the inputs' unit (a quarter radian of an angle input; the sample spacing where that is \
+             shorter)"
+        };
+        let message = if advanced > 0.0 {
+            format!(
+                "the sweep advanced too slowly to go on: its last {n} steps (four per step of the largest length, \
+                 and a reserve) took it {:.3} % of {stride}, which each such window of steps must cover: its steps \
+                 keep being rejected or cut far below their largest length (the solution curve is too rough here \
+                 for them); sample more densely (each interval between samples closer than a quarter unit has \
+                 {n} steps of its own) or sweep a shorter range about here",
+                100.0 * advanced / self.scale()
+            )
+        } else {
+            format!(
+                "the sweep made no progress in {n} steps (four per step of the largest length, and a reserve): \
+                 its steps keep being rejected or cut to nothing here"
+            )
+        };
+        Error::Branch { message, at: self.location(x.as_ref(), None) }
     }
 
     /// Ends the sweep: no further sample.
@@ -721,8 +765,12 @@ where
         while self.tau < target {
             attempts += 1;
             if attempts > self.max_attempts {
-                self.stop();
-                return Some(Err(self.no_progress()));
+                // A window of the budget spent: going on only where it advanced by a stride.
+                if let Err(e) = self.window_spent() {
+                    self.stop();
+                    return Some(Err(e));
+                }
+                attempts = 1;
             }
             let remaining = target - self.tau;
             // Within a hair of the target, land on it: a full step computed in floating point
@@ -1163,7 +1211,10 @@ where
 /// follow no longer one.
 pub(crate) fn range_too_long<Q>(metric: &Metric<Q>, len: f64, at: impl FnOnce() -> Box<Location>) -> Option<Error> {
     let turns = if len > 0.0 { metric.input_len / std::f64::consts::TAU } else { 0.0 };
-    (turns > MAX_TURNS || turns.is_nan()).then(|| Error::RangeTooLong { turns, max_turns: MAX_TURNS, at: at() })
+    // Within a billionth of the limit, the rounding of inputs given as the limit (a million
+    // turns in degrees, converted to radians) is not refused.
+    let over = turns > MAX_TURNS * (1.0 + 1e-9) || turns.is_nan();
+    over.then(|| Error::RangeTooLong { turns, max_turns: MAX_TURNS, at: at() })
 }
 
 /// Whether a judged unknown of `m` is not a closed-form angle ([`Kernel::closed_form_angle`]):
