@@ -273,10 +273,10 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
                 .iter()
                 .zip(&b)
                 .zip(&spans)
-                .map(|((a, b), span)| format!("{}", if b < a { a - span } else { a + span }))
+                .map(|((a, b), span)| digits(if b < a { a - span } else { a + span }))
                 .collect();
             match spans.as_slice() {
-                [span] => format!("at most {span} apart{unit} (--to {})", ends[0]),
+                [span] => format!("at most {} apart{unit} (--to {})", digits(*span), ends[0]),
                 _ => format!("at most --to {}{unit}", ends.join(",")),
             }
         }
@@ -290,7 +290,7 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
     )))
 }
 
-/// `v` (positive) to eight significant digits, rounded down unless within a billionth of `v`
+/// `v` (positive) to eight significant digits, rounded down unless within `1e-11` of `v`
 /// (which the range's check allows for the rounding of the inputs given): a span said as
 /// allowed that is within the limit, and readable (`6283185.3`, `360000000`).
 fn shortened(v: f64) -> f64 {
@@ -299,8 +299,19 @@ fn shortened(v: f64) -> f64 {
     }
     let unit = 10f64.powi(v.log10().floor() as i32 - 7);
     let near = (v / unit).round() * unit;
-    let r = if near <= v * (1.0 + 1e-9) { near } else { (v / unit).floor() * unit };
+    let r = if near <= v * (1.0 + 1e-11) { near } else { (v / unit).floor() * unit };
     if r > 0.0 { r } else { v }
+}
+
+/// `v` written to eight significant digits at most, without trailing zeros (`6283185.3`, not
+/// the `6283185.300000001` that [`shortened`]'s product of a power of ten rounds to).
+fn digits(v: f64) -> String {
+    if !(v.is_finite() && v != 0.0) {
+        return format!("{v}");
+    }
+    let decimals = (7 - v.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
 }
 
 /// The columns the events' file writes before the inputs and the unknowns.

@@ -207,7 +207,10 @@ fn bad_options_are_usage_errors_naming_them() {
         (&["--from", "0", "--to", "1e12"][..], "turns a sweep or a trace follows"),
         // From 694,444 turns back (where this rocker assembles, as at 0): 1.39e6 turns
         // in degrees that still convert to radians precisely; 1e12 degrees do not.
-        (&["--from", "-249999840", "--to", "2.5e8", "--deg"][..], "(360000000 deg of an angle input)"),
+        (
+            &["--from", "-249999840", "--to", "2.5e8", "--deg"][..],
+            "at most 360000000 apart in the units given (degrees for an angle) (--to 110000160)",
+        ),
         (&["--from", "0", "--to", "1e12", "--deg"][..], "--to 1e12: 1000000000000 degrees are too many turns out"),
     ] {
         let out = kinloop(&[&["trace", four_bar.as_str(), "--params", params][..], extra].concat());

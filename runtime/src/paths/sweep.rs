@@ -1211,9 +1211,10 @@ where
 /// follow no longer one.
 pub(crate) fn range_too_long<Q>(metric: &Metric<Q>, len: f64, at: impl FnOnce() -> Box<Location>) -> Option<Error> {
     let turns = if len > 0.0 { metric.input_len / std::f64::consts::TAU } else { 0.0 };
-    // Within a billionth of the limit, the rounding of inputs given as the limit (a million
-    // turns in degrees, converted to radians) is not refused.
-    let over = turns > MAX_TURNS * (1.0 + 1e-9) || turns.is_nan();
+    // Within `1e-10` of the limit, the rounding of inputs given as the limit (a million turns
+    // in degrees, converted to radians; the command line's span allowed, written to eight
+    // significant digits within `1e-11`) is not refused.
+    let over = turns > MAX_TURNS * (1.0 + 1e-10) || turns.is_nan();
     over.then(|| Error::RangeTooLong { turns, max_turns: MAX_TURNS, at: at() })
 }
 
