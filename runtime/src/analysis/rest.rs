@@ -3,7 +3,11 @@
 //! zero between them), or a motion declared piecewise.
 //!
 //! **Definition.** A *rest* is a stretch `[start, end]` of the input, of positive length, over
-//! which the output's velocity analog is exactly zero. This is not the [dwell](super::dwell) of
+//! which the output's velocity analog is exactly zero and its value the same (to the rounding
+//! of the output's values: [`SAME_VALUE`] of the largest among the samples). A law that jumps
+//! (a `floor`, a segment of no length) from one value to another with its velocity zero on
+//! both sides leaves two rests, one each side of the jump, located to the doubles as a rest's
+//! end is. This is not the [dwell](super::dwell) of
 //! a progressive output, which swings back within a band: an output that comes to rest without
 //! reversing has no dwell by that definition, and an oscillating output (a cam follower that
 //! rises, dwells, returns and dwells) has no net travel to define one. A velocity analog that
@@ -60,6 +64,27 @@ fn at_rest(j: &Jet) -> bool {
     j.d1 == 0.0
 }
 
+/// The difference, relative to the largest magnitude of the output's values over the samples,
+/// within which two values at rest are one rest's: a rest's values are exact repeats where a
+/// closed form or a clamped law gives them, and a Newton block's within its rounding, far below
+/// this; a jump of the law, far above.
+pub const SAME_VALUE: f64 = 1e-12;
+
+/// A rest under way: the value it stands at, and the difference within which a value is the
+/// same ([`SAME_VALUE`] of the output's scale).
+#[derive(Clone, Copy)]
+struct Still {
+    value: f64,
+    tol: f64,
+}
+
+impl Still {
+    /// Whether `j` is in this rest: at rest, at its value.
+    fn holds(&self, j: &Jet) -> bool {
+        at_rest(j) && (j.value - self.value).abs() <= self.tol
+    }
+}
+
 /// All rests of an output sampled at `samples` (jets in increasing `x`; `eval` computes the
 /// jet at any `x` of the range, for the ends between samples). See the
 /// [module documentation](self).
@@ -102,33 +127,41 @@ pub(crate) fn rests_across(
 ) -> Result<Vec<Rest>, Error> {
     check_increasing(samples)?;
     let gaps: Vec<(f64, f64)> = corners.iter().map(|c| (samples[c.after].x, samples[c.after + 1].x)).collect();
+    let scale = samples.iter().map(|s| s.value.abs()).fold(0.0, f64::max);
+    let tol = SAME_VALUE * scale;
     let n = samples.len();
     let mut out = Vec::new();
-    // The nearest input known to move before sample `i` (NaN: none, the start of the range).
-    let mut moving_before = f64::NAN;
+    // The nearest input known to be out of the next rest before sample `i`, moving or at rest
+    // at another value (NaN: none, the start of the range).
+    let mut out_before = f64::NAN;
     let mut i = 0;
     while i < n {
         if !at_rest(&samples[i]) {
-            moving_before = samples[i].x;
+            out_before = samples[i].x;
             i += 1;
             continue;
         }
-        // A run of samples at rest, `i ..= k`, each two joined by a midpoint at rest too: two
+        let still = Still { value: samples[i].value, tol };
+        // A run of samples in one rest, `i ..= k`, each two joined by a midpoint in it too: two
         // samples where the velocity only crosses zero (a symmetric mechanism's, exactly) with
-        // motion between them are no rest. `moving_after`: the nearest input known to move
-        // after the run (NaN: none, the end of the range).
-        let (mut k, mut moving_after) = (i, f64::NAN);
+        // motion between them are no rest, nor two at rest at values a jump apart. `out_after`:
+        // the nearest input known to be out of the rest after the run (NaN: none, the end of
+        // the range); `next_out_before`: the same before the next run (a sample of this rest
+        // where the run ends on a jump).
+        let (mut k, mut out_after, mut next_out_before) = (i, f64::NAN, f64::NAN);
         while k + 1 < n {
-            if !at_rest(&samples[k + 1]) {
-                moving_after = samples[k + 1].x;
+            if !still.holds(&samples[k + 1]) {
+                out_after = samples[k + 1].x;
+                next_out_before = if at_rest(&samples[k + 1]) { samples[k].x } else { out_after };
                 break;
             }
             let mid = match corners.iter().find(|c| c.after == k) {
                 Some(c) => c.at,
                 None => evaluated(0.5 * samples[k].x + 0.5 * samples[k + 1].x, &mut eval)?,
             };
-            if !at_rest(&mid) {
-                moving_after = mid.x;
+            if !still.holds(&mid) {
+                out_after = mid.x;
+                next_out_before = if at_rest(&mid) { samples[k].x } else { out_after };
                 break;
             }
             k += 1;
@@ -136,39 +169,41 @@ pub(crate) fn rests_across(
         // One sample at rest: an instant (see the module documentation).
         if k > i {
             let start =
-                if moving_before.is_nan() { samples[i] } else { edge(moving_before, samples[i], &gaps, &mut eval)? };
+                if out_before.is_nan() { samples[i] } else { edge(out_before, samples[i], still, &gaps, &mut eval)? };
             let end =
-                if moving_after.is_nan() { samples[k] } else { edge(moving_after, samples[k], &gaps, &mut eval)? };
+                if out_after.is_nan() { samples[k] } else { edge(out_after, samples[k], still, &gaps, &mut eval)? };
             out.push(Rest { start, end });
         }
-        moving_before = moving_after;
+        out_before = next_out_before;
         i = k + 1;
     }
     Ok(out)
 }
 
-/// The end of a rest between the moving input `moving` and the jet `still` at rest: the input at
-/// rest nearest to `moving`, by bisection on "at rest" until the two are adjacent doubles (at
-/// most about 64 halvings where the two are of one sign, a few more across zero), or a midpoint
-/// falls within one of the `gaps` (open intervals where nothing can be evaluated).
+/// The end of the rest `still` between the input `out`, out of it (moving, or at rest at
+/// another value), and the jet `inside` in it: the input in the rest nearest to `out`, by
+/// bisection on "in the rest" until the two are adjacent doubles (at most about 64 halvings
+/// where the two are of one sign, a few more across zero), or a midpoint falls within one of
+/// the `gaps` (open intervals where nothing can be evaluated).
 fn edge(
-    moving: f64,
-    still: Jet,
+    out: f64,
+    inside: Jet,
+    still: Still,
     gaps: &[(f64, f64)],
     eval: &mut impl FnMut(f64) -> Result<Jet, Error>,
 ) -> Result<Jet, Error> {
-    let (mut moving, mut still) = (moving, still);
+    let (mut out, mut inside) = (out, inside);
     loop {
         // Halves of each: no overflow for ends near the largest doubles.
-        let mid = 0.5 * moving + 0.5 * still.x;
-        if mid == moving || mid == still.x || gaps.iter().any(|&(a, b)| mid > a && mid < b) {
-            return Ok(still);
+        let mid = 0.5 * out + 0.5 * inside.x;
+        if mid == out || mid == inside.x || gaps.iter().any(|&(a, b)| mid > a && mid < b) {
+            return Ok(inside);
         }
         let j = evaluated(mid, eval)?;
-        if at_rest(&j) {
-            still = j;
+        if still.holds(&j) {
+            inside = j;
         } else {
-            moving = mid;
+            out = mid;
         }
     }
 }
@@ -245,6 +280,28 @@ mod tests {
         let r = rests(&samples, flat).unwrap();
         assert_eq!(r.len(), 1);
         assert_eq!((r[0].start.x, r[0].end.x, r[0].value()), (0.0, 4.0, 7.0));
+    }
+
+    /// A law that jumps from one stretch at rest to another, its velocity zero on both sides
+    /// (a `floor` of the input): two rests, each end at the jump to the doubles, where it was
+    /// one rest standing at the first value over both.
+    #[test]
+    fn a_jump_between_two_stretches_at_rest_ends_one_rest_and_begins_another() {
+        let jump = std::f64::consts::FRAC_PI_3;
+        let f = |x: f64| Ok(Jet { x, value: if x < jump { 60.0 } else { 80.0 }, d1: 0.0, d2: 0.0 });
+        for samples in [11, 12, 1000] {
+            let samples: Vec<Jet> =
+                (0..samples).map(|i| f(3.0 * f64::from(i) / f64::from(samples - 1)).unwrap()).collect();
+            let r = rests(&samples, f).unwrap();
+            let ends: Vec<(f64, f64, f64)> = r.iter().map(|r| (r.start.x, r.end.x, r.value())).collect();
+            let below = f64::from_bits(jump.to_bits() - 1);
+            assert_eq!(ends, [(0.0, below, 60.0), (jump, 3.0, 80.0)], "{} samples", samples.len());
+        }
+        // Values at rest that differ by rounding alone are one rest.
+        let noisy =
+            |x: f64| Ok(Jet { x, value: 80.0 + if x.to_bits() % 2 == 0 { 0.0 } else { 1e-13 }, d1: 0.0, d2: 0.0 });
+        let samples: Vec<Jet> = (0..=10).map(|i| noisy(0.3 * f64::from(i)).unwrap()).collect();
+        assert_eq!(rests(&samples, noisy).unwrap().len(), 1);
     }
 
     #[test]
