@@ -14,9 +14,10 @@ use crate::solve::{point, solve_failed};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::analysis::cam::{
-    CamProfile, FlatFace, FlatFaceProfile, FollowerSample, cam_profile, flat_face_profile,
+    CamExtremes, CamProfile, FlatFace, FlatFaceExtremes, FlatFaceProfile, FollowerSample, cam_extremes, cam_profile,
+    flat_face_extremes, flat_face_profile,
 };
-use kinloop_runtime::dims::KinState;
+use kinloop_runtime::dims::{KinBuf, KinState};
 use kinloop_runtime::{Error, Number, QuantityKind, Table};
 use kinloop_viz::plot::{self, Axis, Kind, Series};
 use std::io::Write;
@@ -104,6 +105,17 @@ pub struct Found {
     pub columns: (usize, usize),
     /// The cam for the follower asked for.
     pub shape: Shape,
+    /// Its checks, located between the samples.
+    pub checks: Checks,
+}
+
+/// The checks of a [`Shape`] located between the samples, on the sweep's branch: what the
+/// summary on standard error reports.
+pub enum Checks {
+    /// A roller's (or knife edge's).
+    Roller(CamExtremes),
+    /// A flat face's.
+    Flat(FlatFaceExtremes),
 }
 
 /// A cam for a roller (or knife edge), or for a flat face.
@@ -125,9 +137,10 @@ impl Found {
 
     /// The cam's checks, on standard error.
     pub fn report(&self) {
-        match &self.shape {
-            Shape::Roller(cam) => report(cam, &self.inputs, self.deg, cam.roller),
-            Shape::Flat(cam, _) => report_flat(cam, &self.inputs, self.deg),
+        match (&self.shape, &self.checks) {
+            (Shape::Roller(cam), Checks::Roller(checks)) => report(cam, checks, &self.inputs, self.deg),
+            (Shape::Flat(cam, _), Checks::Flat(checks)) => report_flat(cam, checks, &self.inputs, self.deg),
+            _ => unreachable!("a cam's checks are of its shape"),
         }
     }
 }
@@ -247,16 +260,24 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
         Error::InvalidArgument(_) => usage(format!("{name}: {e}")),
         e => failed(e),
     })?;
-    let mut follower_samples = Vec::with_capacity(req.samples);
-    for state in sweep {
-        let s = state.map_err(failed)?;
+    let sample_of = |s: &KinBuf| {
         let (x, y) = columns;
         let p = [s.out()[x], s.out()[y]];
-        follower_samples.push(FollowerSample {
+        FollowerSample {
             cam: [turn * s.x()[0], turn, 0.0],
             point: [p, [s.dout(x)[0], s.dout(y)[0]], [s.d2out(x, 0, 0), s.d2out(y, 0, 0)]],
             direction: follower.direction(p),
-        });
+        }
+    };
+    let mut follower_samples = Vec::with_capacity(req.samples);
+    // Each sample's input (radians) and unknowns: where the checks between the samples start
+    // their steps from.
+    let (mut xs, mut qs) = (Vec::with_capacity(req.samples), Vec::new());
+    for state in sweep {
+        let s = state.map_err(failed)?;
+        follower_samples.push(sample_of(&s));
+        xs.push(s.x()[0]);
+        qs.extend_from_slice(s.q());
     }
     // Each sample's input in the units given, between the ends as given (`86`, not
     // `86.00000000000001` from the radians), as `kinloop sweep` writes its samples: in degrees
@@ -314,7 +335,37 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
         }
         None => Shape::Roller(cam_profile(&follower_samples, pivot, roller).map_err(refused)?),
     };
-    Ok(Found { pivot, turn, inputs, deg: req.deg, columns, shape })
+    // The checks between the samples: the follower's sample at any input, stepped there on the
+    // sweep's branch from the nearest sample (as `kinloop extremes` refines an extreme).
+    let n = qs.len() / xs.len().max(1);
+    let mut eval = |x: f64| -> Result<FollowerSample, Error> {
+        let i = xs.partition_point(|&v| v < x);
+        let k = match i.checked_sub(1) {
+            Some(j) if i == xs.len() || x - xs[j] <= xs[i] - x => j,
+            _ => i,
+        };
+        if xs[k] == x {
+            return Ok(follower_samples[k]);
+        }
+        let mut step = model.sweep(&[xs[k]], &[x], 2, &qs[k * n..(k + 1) * n])?;
+        let state = step.nth(1).unwrap_or_else(|| Err(Error::InvalidArgument("an empty refinement sweep".into())))?;
+        Ok(sample_of(&state))
+    };
+    let between = |e: Error| match e {
+        Error::InvalidArgument(why) => usage(format!(
+            "{name}: no cam for the follower given ({}): between the samples: {}",
+            follower_options(fa),
+            ["flat_face_profile: ", "cam_profile: "].iter().fold(why.as_str(), |w, p| w.strip_prefix(p).unwrap_or(w))
+        )),
+        e => failed(e),
+    };
+    let checks = match face {
+        Some(face) => {
+            Checks::Flat(flat_face_extremes(&xs, &follower_samples, pivot, face, &mut eval).map_err(between)?)
+        }
+        None => Checks::Roller(cam_extremes(&xs, &follower_samples, pivot, roller, &mut eval).map_err(between)?),
+    };
+    Ok(Found { pivot, turn, inputs, deg: req.deg, columns, shape, checks })
 }
 
 /// The follower's options as given (`--rocker -40,140 --flat --face-offset -135`), the cam's
@@ -647,28 +698,37 @@ fn direction(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
 }
 
 /// The cam's checks on standard error: the largest pressure angle, the sharpest convex point
-/// of the pitch curve and whether the roller undercuts the profile there.
-fn report(cam: &CamProfile, inputs: &[f64], deg: bool, roller: f64) {
+/// of the pitch curve and whether the roller undercuts the profile, each located between the
+/// samples (`checks`); the samples where it is undercut (`cam`'s).
+fn report(cam: &CamProfile, checks: &CamExtremes, inputs: &[f64], deg: bool) {
     let (unit, angle) = if deg { ("°", 180.0 / std::f64::consts::PI) } else { (" rad", 1.0) };
-    let (k, alpha) = cam.max_pressure_angle();
-    eprintln!("cam: largest pressure angle {}{unit} at {}{unit}", Number(alpha * angle), Number(inputs[k]));
-    match cam.min_convex_radius() {
-        Some((k, radius)) => eprintln!(
+    let roller = checks.roller;
+    let alpha = checks.max_pressure_angle;
+    eprintln!("cam: largest pressure angle {}{unit} at {}{unit}", Number(alpha.value * angle), Number(alpha.x * angle));
+    match checks.min_convex_radius {
+        Some(sharpest) => eprintln!(
             "cam: sharpest convex point of the pitch curve at {}{unit}: radius of curvature {}, of the profile {}",
-            Number(inputs[k]),
-            Number(radius),
-            Number(cam.profile_radius(k))
+            Number(sharpest.x * angle),
+            Number(sharpest.value),
+            Number(sharpest.value - roller)
         ),
         None => eprintln!("cam: the pitch curve is nowhere convex"),
     }
     let undercut = cam.undercut();
-    match (undercut.first(), undercut.last()) {
-        (Some(&a), Some(&b)) => eprintln!(
+    let advice = "use a smaller roller or a larger cam";
+    match (undercut.first(), undercut.last(), checks.min_convex_radius) {
+        (Some(&a), Some(&b), _) => eprintln!(
             "cam: UNDERCUT at {} (the first at {}{unit}, the last at {}{unit}): the pitch curve is sharper \
-             there than the roller (radius {}); use a smaller roller or a larger cam",
+             there than the roller (radius {}); {advice}",
             Count(undercut.len(), "sample"),
             Number(inputs[a]),
             Number(inputs[b]),
+            Number(roller)
+        ),
+        (_, _, Some(sharpest)) if checks.undercut() => eprintln!(
+            "cam: UNDERCUT between the samples, at {}{unit} (no sample falls where it is): the pitch curve is \
+             sharper there than the roller (radius {}); {advice}",
+            Number(sharpest.x * angle),
             Number(roller)
         ),
         _ => eprintln!("cam: no undercut with a roller of radius {}", Number(roller)),
@@ -676,31 +736,40 @@ fn report(cam: &CamProfile, inputs: &[f64], deg: bool, roller: f64) {
 }
 
 /// A flat-faced follower's checks on standard error: the largest pressure angle, the smallest
-/// radius of curvature of the profile, the face's least width and the samples where the profile
-/// is not convex.
-fn report_flat(cam: &FlatFaceProfile, inputs: &[f64], deg: bool) {
+/// radius of curvature of the profile and the face's least width, each located between the
+/// samples (`checks`); the samples where the profile is not convex (`cam`'s).
+fn report_flat(cam: &FlatFaceProfile, checks: &FlatFaceExtremes, inputs: &[f64], deg: bool) {
     let (unit, angle) = if deg { ("°", 180.0 / std::f64::consts::PI) } else { (" rad", 1.0) };
-    let (k, alpha) = cam.max_pressure_angle();
-    eprintln!("cam: largest pressure angle {}{unit} at {}{unit}", Number(alpha * angle), Number(inputs[k]));
-    let (k, radius) = cam.min_radius();
-    eprintln!("cam: smallest radius of curvature of the profile {} at {}{unit}", Number(radius), Number(inputs[k]));
-    let (lo, hi) = cam.offset_range();
+    let alpha = checks.max_pressure_angle;
+    eprintln!("cam: largest pressure angle {}{unit} at {}{unit}", Number(alpha.value * angle), Number(alpha.x * angle));
+    let sharpest = checks.min_radius;
+    eprintln!(
+        "cam: smallest radius of curvature of the profile {} at {}{unit}",
+        Number(sharpest.value),
+        Number(sharpest.x * angle)
+    );
     eprintln!(
         "cam: face width at least {} (the contact from {} to {} along the face)",
-        Number(cam.face_width()),
-        Number(lo),
-        Number(hi)
+        Number(checks.face_width()),
+        Number(checks.min_offset.value),
+        Number(checks.max_offset.value)
     );
     let bad = cam.not_convex();
+    let advice = "a flat face cannot follow the law; use a larger base circle or a gentler law";
     match (bad.first(), bad.last()) {
         (Some(&a), Some(&b)) => eprintln!(
             "cam: NOT CONVEX at {} (the first at {}{unit}, the last at {}{unit}): the face's envelope folds \
-             there and a flat face cannot follow the law; use a larger base circle or a gentler law",
+             there and {advice}",
             Count(bad.len(), "sample"),
             Number(inputs[a]),
             Number(inputs[b])
         ),
-        _ => eprintln!("cam: the profile is convex at every sample"),
+        _ if !checks.convex() => eprintln!(
+            "cam: NOT CONVEX between the samples, at {}{unit} (no sample falls where it is): the face's envelope \
+             folds there and {advice}",
+            Number(sharpest.x * angle)
+        ),
+        _ => eprintln!("cam: the profile is convex at every sample and between them"),
     }
 }
 

@@ -19,6 +19,27 @@ fn stderr(out: &std::process::Output) -> String {
     String::from_utf8_lossy(&out.stderr).to_string()
 }
 
+/// The number in `err` after `after`, up to `until`.
+fn number_in(err: &str, after: &str, until: char) -> f64 {
+    err.split(after)
+        .nth(1)
+        .and_then(|t| t.split(until).next())
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no `{after}` in: {err}"))
+}
+
+/// The largest value of `f` on `[a, b]` where it has one peak, by golden-section search to
+/// the doubles' resolution: `(x, f(x))`.
+fn golden(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> (f64, f64) {
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..200 {
+        let (c, d) = (b - g * (b - a), a + g * (b - a));
+        if f(c) > f(d) { b = d } else { a = c }
+    }
+    let x = 0.5 * (a + b);
+    (x, f(x))
+}
+
 #[test]
 fn the_dwell_cam_has_the_radial_follower_s_closed_forms() {
     let m = fx::cam_linkage::DwellCamRocker::default();
@@ -69,13 +90,17 @@ fn the_dwell_cam_has_the_radial_follower_s_closed_forms() {
     }
     let err = stderr(&out);
     assert!(err.contains("no undercut with a roller of radius 10"), "{err}");
-    let said: f64 = err
-        .split("largest pressure angle ")
-        .nth(1)
-        .and_then(|t| t.split('°').next())
-        .and_then(|v| v.parse().ok())
-        .unwrap_or_else(|| panic!("no largest pressure angle in: {err}"));
-    assert!((said - largest).abs() <= 1e-10, "{said} vs {largest}");
+    // The largest pressure angle is located between the samples: the law's own, beside the
+    // largest sample's.
+    let said = number_in(&err, "largest pressure angle ", '°');
+    let top = (0..rows.len()).max_by(|&a, &b| rows[a][6].total_cmp(&rows[b][6])).unwrap();
+    let at = rows[top][0].to_radians();
+    let alpha = |phi: f64| {
+        let [s, ds, _] = m.law_by_hand(phi);
+        ds.abs().atan2(m.y0 + s).to_degrees()
+    };
+    let (_, peak) = golden(alpha, at - 0.5f64.to_radians(), at + 0.5f64.to_radians());
+    assert!(peak >= largest && (said - peak).abs() <= 1e-10, "{said} vs {peak} (the samples' {largest})");
     // Clockwise: the pitch curve mirrored, the same pressure angles.
     let cw =
         kinloop(&["cam", &file, "--point", "follower", "--guide", "0,1", "--roller", "10", "--deg", "--clockwise"]);
@@ -153,17 +178,19 @@ fn a_flat_face_on_the_dwell_cam_has_the_closed_forms() {
     }
     // The summary: the face spans the extremes of s' (the rise's 1.875 h / beta, the return's),
     // the smallest radius where s'' is most negative.
+    // (Both extremes of s' fall on samples, mid-rise and mid-return; the smallest radius is
+    // located between them, where y0 + s + s'' is least, early in the return.)
     let err = stderr(&out);
-    let number = |after: &str, until: char| -> f64 {
-        err.split(after)
-            .nth(1)
-            .and_then(|t| t.split(until).next())
-            .and_then(|v| v.trim().parse().ok())
-            .unwrap_or_else(|| panic!("no `{after}` in: {err}"))
-    };
+    let number = |after: &str, until: char| number_in(&err, after, until);
     assert!((number("face width at least ", '(') - (hi - lo)).abs() <= 1e-12 * m.y0, "{err}");
     assert!((hi - 1.875 * m.lift / m.rise).abs() <= 1e-6 * m.lift, "{hi}");
-    assert!((number("smallest radius of curvature of the profile ", 'a') - sharpest).abs() <= 1e-12 * m.y0, "{err}");
+    let radius = |phi: f64| {
+        let [s, _, d2s] = m.law_by_hand(phi);
+        -(m.y0 + s + d2s)
+    };
+    let (_, least) = golden(radius, m.phi1, m.phi1 + m.fall / 2.0);
+    assert!(-least <= sharpest, "{least} {sharpest}");
+    assert!((number("smallest radius of curvature of the profile ", 'a') + least).abs() <= 1e-12 * m.y0, "{err}");
     assert!(err.contains("the profile is convex at every sample"), "{err}");
     // On a base circle of 10 (the rod lengthened to reach the rocker) the face's envelope folds
     // early in the return: 10 + s + s'' = 10 + 18.7 - 37.9 < 0 where its deceleration peaks.
@@ -173,6 +200,61 @@ fn a_flat_face_on_the_dwell_cam_has_the_closed_forms() {
     // A tilted face: the pressure angle is the tilt.
     let (_, tilted) = csv(&kinloop(&["cam", &file, "--point", "follower", "--guide", "0,1", "--flat", "-20", "--deg"]));
     assert!(tilted.iter().all(|row| (row[5] - 20.0).abs() <= 1e-12), "{:?}", tilted[0]);
+}
+
+/// The dwell cam's checks are located between the samples, whatever their number. Its rise
+/// shortened to 2 degrees (the 361 samples every degree land at its start, its middle and its
+/// end) or to half a degree (no sample in it), the radial follower's checks are those of the
+/// polar curve `R = y0 + s(phi)`, `s = lift p(u)`, `u = (phi - phi0) / rise`,
+/// `p = 10 u^3 - 15 u^4 + 6 u^5` (lift 20, y0 60, phi0 30 degrees): the pressure angle
+/// `atan(|s'| / R)` and the pitch curve's radius of curvature
+/// `(R^2 + R'^2)^1.5 / (R^2 + 2 R'^2 - R R'')`; under a flat face square to the guide the
+/// profile's radius of curvature `R + s''`. Their extremes by golden-section search in python3
+/// (mpmath, 40 digits), the rise given in radians as here:
+///
+/// * rise 2 degrees: the sharpest convex point of the pitch curve at 31.907459 degrees, radius
+///   of curvature 0.206069 (a roller of 10 undercuts it; at the samples the sharpest was the
+///   return's 53.03 at 224 degrees, "no undercut"); under a flat face the least radius
+///   -94687.715 at 31.577341 degrees (the samples said convex, 40.66 at 223 degrees);
+/// * rise half a degree: the largest pressure angle 89.075161 degrees at 30.233183 degrees (the
+///   samples said 17.2 at 253 degrees, the return's).
+#[test]
+fn the_checks_are_located_between_the_samples() {
+    let file = shipped("dwell_cam.kl");
+    let cam = |rise: &str, follower: &[&str], samples: &str| {
+        let params = format!("rise={rise}");
+        let args =
+            [&["cam", &file, "--point", "follower", "--guide", "0,1", "--deg", "--params", &params][..], follower]
+                .concat();
+        let out = kinloop(&[&args[..], &["--samples", samples]].concat());
+        assert!(out.status.success(), "{}", stderr(&out));
+        stderr(&out)
+    };
+    let (two, half, roller) = ("0.0349066", "0.00872665", ["--roller", "10"]);
+    // The reported numbers agree to rounding whatever the samples (the default 361 among them).
+    let reference = number_in(&cam(half, &roller, "361"), "largest pressure angle ", '°');
+    let agree = |a: f64, b: f64, what: &str| assert!((a - b).abs() <= 1e-9 * a.abs().max(1.0), "{what}: {a} vs {b}");
+    for samples in ["361", "37", "1001", "100001"] {
+        let err = cam(two, &roller, samples);
+        assert!(err.contains("UNDERCUT"), "{samples} samples: {err}");
+        let sharpest = number_in(&err, "radius of curvature ", ',');
+        let at = number_in(&err, "sharpest convex point of the pitch curve at ", '°');
+        assert!((sharpest - 0.206069).abs() <= 1e-5 && (at - 31.907459).abs() <= 1e-4, "{samples} samples: {err}");
+        let err = cam(half, &roller, samples);
+        let alpha = number_in(&err, "largest pressure angle ", '°');
+        let at = number_in(&err, "° at ", '°');
+        assert!((alpha - 89.075161).abs() <= 0.05 && (at - 30.233183).abs() <= 0.05, "{samples} samples: {err}");
+        assert!((alpha - 89.075161).abs() <= 1e-5 && (at - 30.233183).abs() <= 1e-4, "{samples} samples: {err}");
+        agree(alpha, reference, "the largest pressure angle against the default samples'");
+        let err = cam(two, &["--flat"], samples);
+        assert!(err.contains("NOT CONVEX"), "{samples} samples: {err}");
+        let least = number_in(&err, "smallest radius of curvature of the profile ", 'a');
+        let at = number_in(&err, &format!("{least} at "), '°');
+        assert!((least + 94687.715).abs() <= 1e-3 && (at - 31.577341).abs() <= 1e-4, "{samples} samples: {err}");
+    }
+    // At the default samples no sample falls where the half-degree rise undercuts the roller.
+    let err = cam(half, &roller, "361");
+    assert!(err.contains("UNDERCUT between the samples, at 30.48"), "{err}");
 }
 
 /// The eccentric disc (radius 40, its centre 10 from the shaft) under a flat face on a rocker

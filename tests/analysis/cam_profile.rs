@@ -6,7 +6,7 @@
 //! textbook closed forms of its radius of curvature and pressure angle.
 
 use kinloop::Error;
-use kinloop::analysis::cam::{CamProfile, FollowerSample, cam_profile};
+use kinloop::analysis::cam::{CamProfile, FollowerSample, cam_extremes, cam_profile};
 use kinloop_fixtures::cam_linkage::{CamLinkage, HarmonicCamRocker};
 use std::f64::consts::TAU;
 
@@ -235,5 +235,61 @@ fn a_cam_at_the_ends_of_the_f64_range_has_the_same_angles() -> Result<(), Error>
         }
         assert!(cam.undercut().is_empty());
     }
+    Ok(())
+}
+
+/// The double-harmonic law's largest pressure angle and sharpest point located between samples
+/// a quarter turn apart ([`cam_extremes`]): the textbook closed forms' extremes, found by a
+/// fine search here, where the samples' own checks miss them by degrees.
+#[test]
+fn the_checks_are_located_between_the_samples() -> Result<(), Error> {
+    let m = HarmonicCamRocker::default();
+    let follower = |phi: f64| -> Result<FollowerSample, Error> {
+        let s = m.solve(phi)?;
+        let p = [s.out.follower.x, s.out.follower.y];
+        Ok(FollowerSample {
+            cam: [phi, 1.0, 0.0],
+            point: [p, [s.dout.follower.x, s.dout.follower.y], [s.d2out.follower.x, s.d2out.follower.y]],
+            direction: [0.0, 1.0],
+        })
+    };
+    let inputs: Vec<f64> = (0..=4).map(|k| k as f64 * TAU / 4.0).collect();
+    let samples: Vec<FollowerSample> = inputs.iter().map(|&phi| follower(phi)).collect::<Result<_, _>>()?;
+    let located = cam_extremes(&inputs, &samples, [0.0, 0.0], 0.0, follower)?;
+    // The pressure angle and the curvature of the polar curve R = y0 + s (where convex), by
+    // hand, their largest on a fine grid refined by golden section.
+    let alpha = |phi: f64| {
+        let [s, ds, _] = harmonic(&m, phi);
+        ds.abs().atan2(m.y0 + s)
+    };
+    let curvature = |phi: f64| {
+        let [s, ds, d2s] = harmonic(&m, phi);
+        let r = m.y0 + s;
+        let rho = (r * r + ds * ds).powf(1.5) / (r * r + 2.0 * ds * ds - r * d2s);
+        if rho > 0.0 { 1.0 / rho } else { 0.0 }
+    };
+    let best = |f: &dyn Fn(f64) -> f64| {
+        let k = (0..3600).max_by(|&a, &b| f(a as f64 * TAU / 3600.0).total_cmp(&f(b as f64 * TAU / 3600.0))).unwrap();
+        let (mut a, mut b) = ((k as f64 - 1.0) * TAU / 3600.0, (k as f64 + 1.0) * TAU / 3600.0);
+        let g = (5f64.sqrt() - 1.0) / 2.0;
+        for _ in 0..200 {
+            let (c, d) = (b - g * (b - a), a + g * (b - a));
+            if f(c) > f(d) { b = d } else { a = c }
+        }
+        (0.5 * (a + b), f(0.5 * (a + b)))
+    };
+    let (x, worst) = best(&alpha);
+    assert!((located.max_pressure_angle.value - worst).abs() <= 1e-13, "{located:?} vs {worst}");
+    assert!((located.max_pressure_angle.x - x).abs() <= 1e-6, "{located:?} vs {x}");
+    let (x, curvature) = best(&curvature);
+    let sharpest = located.min_convex_radius.expect("convex somewhere");
+    assert!((sharpest.value - 1.0 / curvature).abs() <= 1e-11 * m.y0, "{located:?} vs {}", 1.0 / curvature);
+    assert!((sharpest.x - x).abs() <= 1e-6, "{located:?} vs {x}");
+    // The samples' own checks, a quarter turn apart, are off.
+    let cam = cam_profile(&samples, [0.0, 0.0], 0.0)?;
+    assert!(cam.max_pressure_angle().1 < worst - 1e-3, "{:?}", cam.max_pressure_angle());
+    // A roller as large as the sharpest point undercuts it.
+    let big = cam_extremes(&inputs, &samples, [0.0, 0.0], sharpest.value, follower)?;
+    assert!(big.undercut() && !located.undercut());
     Ok(())
 }

@@ -61,11 +61,43 @@
 //!
 //! Lengths come out in the mechanism's unit and angles in radians: the same profile, scaled, at
 //! any unit of length.
+//!
+//! # Between the samples
+//!
+//! [`cam_profile`] and [`flat_face_profile`] see the samples alone, and so do the checks of
+//! what they return ([`CamProfile::max_pressure_angle`], [`CamProfile::min_convex_radius`],
+//! [`CamProfile::undercut`], their flat face's): a feature of the law narrower than the sample
+//! spacing (a rise over two degrees, sampled every degree) has its sharpest point and its
+//! steepest flank between samples, or no sample in it at all, and the samples' checks call a
+//! cam good that is not. [`cam_extremes`] and [`flat_face_extremes`] locate the checks between
+//! the samples, evaluating the follower's motion there with a function the caller gives (the
+//! mechanism's state at any input on the sweep's branch, as
+//! [`SampledOf::at`](crate::analysis::SampledOf::at) gives it):
+//!
+//! 1. **Resolved.** Each interval between neighbouring points is halved until the pitch curve's
+//!    jets at its ends (the follower's point seen from the cam, `r`, with its analogs `r'`,
+//!    `r''`) agree as those of a curve varying smoothly over the interval `h` do: the corrected
+//!    trapezoid rules `r_b - r_a = h (r'_a + r'_b) / 2 - h^2 (r''_b - r''_a) / 12` and
+//!    `r'_b - r'_a = h (r''_a + r''_b) / 2` hold to a thousandth of the interval's change
+//!    (`h |r'|`, and `h (|r''| + |r'|)`). A smooth law sampled every degree agrees to some
+//!    1e-5; a rise between two samples of a dwell (both ends at rest, the point moved) fails by
+//!    the whole lift. An interval with a corner of the motion never agrees and is halved to a
+//!    billionth of its width. A feature that starts and ends between two samples, leaving the
+//!    motion's jets there as they would be without it, is not seen: sample finely enough that
+//!    one lands in it.
+//! 2. **Located.** Each check's largest values over the resolved points are refined by Brent's
+//!    search ([`maximize`](crate::analysis::extremes::maximize)) between their neighbours, as
+//!    [`SampledOf::peak`](crate::analysis::SampledOf::peak) refines a peak: the location to
+//!    `sqrt(eps)` of the bracket, the value to rounding. The pitch curve's radius of curvature
+//!    passes through infinity where the curve straightens: its smallest convex value is located
+//!    as the largest curvature, its reciprocal.
 
 mod flat_face;
+mod located;
 mod plane;
 
 pub use flat_face::{FlatFace, FlatFaceProfile, flat_face_profile};
+pub use located::{CamExtremes, FlatFaceExtremes, Located, cam_extremes, flat_face_extremes};
 
 use crate::error::Error;
 use crate::number::Number;
@@ -115,7 +147,8 @@ impl CamProfile {
     }
 
     /// The samples where the profile is undercut: the pitch curve convex with a radius of
-    /// curvature not above the roller's, so that the offset folds over itself there.
+    /// curvature not above the roller's, so that the offset folds over itself there. Of the
+    /// samples only: an undercut between them is missed ([`cam_extremes`] looks between them).
     pub fn undercut(&self) -> Vec<usize> {
         (0..self.pitch_radius.len())
             .filter(|&k| self.pitch_radius[k] > 0.0 && self.pitch_radius[k] <= self.roller)
@@ -124,12 +157,13 @@ impl CamProfile {
 
     /// The smallest radius of curvature of the pitch curve where it is convex, with its sample
     /// (`None` where it is nowhere convex). Less the roller's radius, the sharpest point of the
-    /// profile.
+    /// profile. Of the samples only ([`cam_extremes`] locates it between them).
     pub fn min_convex_radius(&self) -> Option<(usize, f64)> {
         self.pitch_radius.iter().copied().enumerate().filter(|&(_, r)| r > 0.0).min_by(|a, b| a.1.total_cmp(&b.1))
     }
 
-    /// The largest pressure angle, with its sample.
+    /// The largest pressure angle, with its sample. Of the samples only ([`cam_extremes`]
+    /// locates it between them).
     pub fn max_pressure_angle(&self) -> (usize, f64) {
         largest(&self.pressure_angle)
     }

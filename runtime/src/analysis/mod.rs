@@ -23,6 +23,7 @@
 //! | residual unbalance `max |v - v_1|` | [`SampledOf::unbalance`] | extremes of the residual |
 //! | a disc cam's pitch curve, profile, curvature and pressure angle from its follower's motion | [`cam::cam_profile`] | kinematic inversion of the positions and analogs |
 //! | a flat-faced follower's cam: contact, curvature, offset along the face, pressure angle | [`cam::flat_face_profile`] | envelope of the face by inversion of the positions and analogs |
+//! | a cam's largest pressure angle, sharpest point, undercut or cusp, between the samples | [`cam::cam_extremes`], [`cam::flat_face_extremes`] | the motion evaluated between the samples until resolved, then Brent's search |
 //! | design optimisation without gradients | [`NelderMead`] (`minimize`, `minimize_boxed`) | Nelder–Mead simplex (in a box: MINUIT's sine transformation) |
 //!
 //! ```ignore

@@ -56,19 +56,22 @@ pub struct FlatFaceProfile {
 }
 
 impl FlatFaceProfile {
-    /// The smallest and the largest offset of the contact along the face, over the samples.
+    /// The smallest and the largest offset of the contact along the face, over the samples
+    /// ([`flat_face_extremes`](super::flat_face_extremes) locates them between the samples).
     pub fn offset_range(&self) -> (f64, f64) {
         self.offset.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)))
     }
 
     /// The least width of the face, over the samples: the largest offset less the smallest (the
-    /// extremes between the samples are missed: sample finely).
+    /// extremes between the samples are missed: [`flat_face_extremes`](super::flat_face_extremes)
+    /// locates them).
     pub fn face_width(&self) -> f64 {
         let (lo, hi) = self.offset_range();
         hi - lo
     }
 
-    /// The smallest radius of curvature of the profile, with its sample.
+    /// The smallest radius of curvature of the profile, with its sample. Of the samples only
+    /// ([`flat_face_extremes`](super::flat_face_extremes) locates it between them).
     pub fn min_radius(&self) -> (usize, f64) {
         self.radius
             .iter()
@@ -79,6 +82,8 @@ impl FlatFaceProfile {
 
     /// The samples where the profile is not convex (its radius of curvature zero or negative):
     /// the face's envelope turns back on itself there, and the law cannot be made with a flat face.
+    /// Of the samples only: a cusp between them is missed
+    /// ([`flat_face_extremes`](super::flat_face_extremes) looks between them).
     pub fn not_convex(&self) -> Vec<usize> {
         (0..self.radius.len()).filter(|&k| self.radius[k] <= 0.0).collect()
     }
@@ -98,7 +103,8 @@ impl FlatFaceProfile {
         }
     }
 
-    /// The largest pressure angle, with its sample.
+    /// The largest pressure angle, with its sample. Of the samples only
+    /// ([`flat_face_extremes`](super::flat_face_extremes) locates it between them).
     pub fn max_pressure_angle(&self) -> (usize, f64) {
         largest(&self.pressure_angle)
     }
