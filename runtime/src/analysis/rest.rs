@@ -298,8 +298,9 @@ mod tests {
             assert_eq!(ends, [(0.0, below, 60.0), (jump, 3.0, 80.0)], "{} samples", samples.len());
         }
         // Values at rest that differ by rounding alone are one rest.
-        let noisy =
-            |x: f64| Ok(Jet { x, value: 80.0 + if x.to_bits() % 2 == 0 { 0.0 } else { 1e-13 }, d1: 0.0, d2: 0.0 });
+        let noisy = |x: f64| {
+            Ok(Jet { x, value: 80.0 + if x.to_bits().is_multiple_of(2) { 0.0 } else { 1e-13 }, d1: 0.0, d2: 0.0 })
+        };
         let samples: Vec<Jet> = (0..=10).map(|i| noisy(0.3 * f64::from(i)).unwrap()).collect();
         assert_eq!(rests(&samples, noisy).unwrap().len(), 1);
     }
