@@ -226,6 +226,10 @@ fn six_digits(v: f64) -> f64 {
     if rounded.is_finite() && scale.is_finite() && scale > 0.0 { rounded } else { v }
 }
 
+/// The stretches at rest a note names one by one before it counts the others (and names the
+/// last).
+const NOTED_RESTS: usize = 4;
+
 /// Where `column` stands exactly still over stretches of the range (a cam follower's dwells),
 /// a note naming them: an extreme reached over a whole stretch is written at one point of it
 /// (the follower's lowest position "at 344 degrees", inside a dwell from 300 to 390), which
@@ -258,13 +262,21 @@ fn rests_note(
         parts.join(", ")
     };
     let u = unit_suffix(unit(kind, deg));
-    let stretches: Vec<String> = rests
-        .iter()
-        .map(|r| {
-            let value = Number(six_digits(written(kind, deg, r.value())));
-            format!("at {value}{u} from {} to {}", at(r.start.x), at(r.end.x))
-        })
-        .collect();
+    let stretch = |r: &kinloop_runtime::analysis::Rest| {
+        let value = Number(six_digits(written(kind, deg, r.value())));
+        format!("at {value}{u} from {} to {}", at(r.start.x), at(r.end.x))
+    };
+    // Over many turns a cam's follower rests once or twice a turn: the first few stretches and
+    // the last say the pattern, a count the others (every one written made a note of 655 KB
+    // for a thousand turns).
+    let stretches: Vec<String> = if rests.len() > NOTED_RESTS + 1 {
+        let mut shown: Vec<String> = rests[..NOTED_RESTS].iter().map(stretch).collect();
+        shown.push(format!("{} more stretches", rests.len() - NOTED_RESTS - 1));
+        shown.push(stretch(&rests[rests.len() - 1]));
+        shown
+    } else {
+        rests.iter().map(stretch).collect()
+    };
     Some(format!(
         "note: {column} stands still {} (6 significant digits); an extreme reached over such a stretch is written \
          at one point of it",

@@ -381,6 +381,22 @@ fn a_column_standing_still_has_its_rests_noted() {
     assert!(err.lines().filter(|l| l.starts_with("note: ")).count() == 5 && !err.contains("follower.x"), "{err}");
 }
 
+/// Over many turns the note names the first stretches at rest and the last, and counts the
+/// others: over a thousand turns it named every one, 655 KB of notes.
+#[test]
+fn rests_over_many_turns_are_counted_past_the_first() {
+    let out = kinloop(&["extremes", &shipped("dwell_cam.kl"), "--from", "90", "--to", "3690", "--deg"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8_lossy(&out.stderr);
+    let follower = err.lines().find(|l| l.starts_with("note: follower.y")).unwrap_or_else(|| panic!("{err}"));
+    // Two rests a turn over ten turns: four named, 15 counted, the last named.
+    let start = "note: follower.y stands still at 80 length unit from phi = 150 deg to phi = 200 deg, and at 60 \
+                 length unit from phi = 300 deg to phi = 390 deg, and at 80 length unit from phi = 510 deg";
+    assert!(follower.starts_with(start), "{follower}");
+    assert!(follower.contains(", and 15 more stretches, and at 60 length unit from phi = 3540 deg to phi = 3630 deg"));
+    assert!(follower.len() < 600, "{follower}");
+}
+
 /// A time input (`t`, of no inferred kind) has its unit in the header as the sweep's table and
 /// `check` write it, `t at min [unit of t]`: it had none (`t at min`), where the sweep wrote
 /// `t [unit of t]` and `check` listed `t` alone. The slider of a crank turned at `w` per unit of
