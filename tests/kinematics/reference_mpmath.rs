@@ -171,15 +171,23 @@ impl Layout {
     }
 }
 
-/// Which unknowns are lengths (compared relative to `length`), the others angles (absolute).
+/// The kinds of a reference's quantities: which unknowns are `lengths` (compared relative to
+/// `length`), the others angles (absolute); the outputs are lengths but for `angle_outputs`
+/// (their indices among the output columns).
+#[derive(Clone, Copy)]
+struct Kinds<'a> {
+    lengths: &'a [usize],
+    angle_outputs: &'a [usize],
+    length: f64,
+}
+
+/// Row `row` of `reference` against `k`, its quantities of `kinds`.
 fn compare<const N: usize, const NI: usize, const NO: usize>(
     name: &str,
     reference: &Reference,
     row: usize,
     k: &Kin<N, NI, NO>,
-    lengths: &[usize],
-    angle_outputs: &[usize],
-    length: f64,
+    Kinds { lengths, angle_outputs, length }: Kinds,
 ) {
     let r = &reference.rows[row];
     let at = Layout { ni: NI, n: N, no: NO };
@@ -228,7 +236,7 @@ fn check<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO: usi
     lengths: &[usize],
     length: f64,
 ) {
-    check_against(name, m, &Reference::parse(text), lengths, &[], length, 1.0);
+    check_against(name, m, &Reference::parse(text), Kinds { lengths, angle_outputs: &[], length }, 1.0);
 }
 
 /// [`check`] against a parsed (or scaled) reference of a mechanism `size` times the
@@ -237,9 +245,7 @@ fn check_against<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const
     name: &str,
     m: &M,
     reference: &Reference,
-    lengths: &[usize],
-    angle_outputs: &[usize],
-    length: f64,
+    kinds: Kinds,
     size: f64,
 ) {
     let cfg = NewtonConfig::default();
@@ -247,10 +253,10 @@ fn check_against<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const
     for (i, r) in reference.rows.iter().enumerate() {
         let mut guess = unknowns::<N, NI>(r);
         for (u, q) in guess.iter_mut().enumerate() {
-            *q += if lengths.contains(&u) { 0.05 * size } else { 0.05 };
+            *q += if kinds.lengths.contains(&u) { 0.05 * size } else { 0.05 };
         }
         let k = m.kinematics_flat(&inputs(r), &guess, &cfg).unwrap_or_else(|e| panic!("{name} row {i}: {e}"));
-        compare(name, reference, i, &k, lengths, angle_outputs, length);
+        compare(name, reference, i, &k, kinds);
     }
     // A sweep through the same inputs (its own predictor, its own step control).
     let first = &reference.rows[0];
@@ -268,9 +274,9 @@ fn check_against<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const
         for (x, want) in k.x.iter().zip(&reference.rows[i]) {
             assert_close!(*x, *want, <= 4.0 * f64::EPSILON * 7.0, "{name} sample {i} at {:?}", k.x);
         }
-        compare(name, reference, i, &k, lengths, angle_outputs, length);
+        compare(name, reference, i, &k, kinds);
     }
-    fine_sweep(name, m, reference, lengths, angle_outputs, length);
+    fine_sweep(name, m, reference, kinds);
 }
 
 /// Sub-samples per reference row in [`fine_sweep`]: 0.25 degree apart, where a sweep advances
@@ -284,10 +290,9 @@ fn fine_sweep<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO
     name: &str,
     m: &M,
     reference: &Reference,
-    lengths: &[usize],
-    angle_outputs: &[usize],
-    length: f64,
+    kinds: Kinds,
 ) {
+    let Kinds { lengths, length, .. } = kinds;
     let (first, last) = (&reference.rows[0], &reference.rows[reference.rows.len() - 1]);
     let samples = (reference.rows.len() - 1) * FINE + 1;
     let sweep = kinloop::Sweep::<M, Kin<N, NI, NO>, N, NI, NO>::new(
@@ -304,7 +309,7 @@ fn fine_sweep<M: Mechanism<N, NI, NO>, const N: usize, const NI: usize, const NO
     for (i, k) in sweep.enumerate() {
         let k = k.unwrap_or_else(|e| panic!("{name} fine sweep sample {i}: {e}"));
         if i % FINE == 0 {
-            compare(name, reference, i / FINE, &k, lengths, angle_outputs, length);
+            compare(name, reference, i / FINE, &k, kinds);
         }
         let point = m.kinematics_flat(&k.x, &k.q, &cfg).unwrap_or_else(|e| panic!("{name} point {i}: {e}"));
         for u in 0..N {
@@ -431,7 +436,7 @@ fn cam_linkage_matches_the_50_digit_reference() {
         h: 130.0,
     };
     let reference = Reference::parse(include_str!("../reference/cam_linkage.csv"));
-    check_against("cam_linkage", &m, &reference, &[3], &[6], 150.0, 1.0);
+    check_against("cam_linkage", &m, &reference, Kinds { lengths: &[3], angle_outputs: &[6], length: 150.0 }, 1.0);
 }
 
 /// A dyad whose base point the input moves through an explicit law (its analogs those of the
@@ -466,11 +471,23 @@ fn polar_blocks_at_extreme_sizes_match_the_50_digit_reference() {
         let m = GearLever { l_c: 2.0 * size, l_p: 1.3 * size, u: 3.0 };
         let reference = Reference::parse(include_str!("../reference/gear_lever.csv"));
         let reference = reference.scaled(size, Layout { ni: 1, n: 2, no: 2 }, &[0, 2, 3]);
-        check_against("gear_lever", &m, &reference, &[0], &[], 3.3 * size, size);
+        check_against(
+            "gear_lever",
+            &m,
+            &reference,
+            Kinds { lengths: &[0], angle_outputs: &[], length: 3.3 * size },
+            size,
+        );
         let m = SlottedLever { r: size, d: 2.0 * size, l: 4.0 * size };
         let reference = Reference::parse(include_str!("../reference/slotted_lever.csv"));
         let reference = reference.scaled(size, Layout { ni: 1, n: 2, no: 2 }, &[0, 2, 3]);
-        check_against("slotted_lever", &m, &reference, &[0], &[], 4.0 * size, size);
+        check_against(
+            "slotted_lever",
+            &m,
+            &reference,
+            Kinds { lengths: &[0], angle_outputs: &[], length: 4.0 * size },
+            size,
+        );
     }
 }
 
@@ -493,7 +510,13 @@ fn cam_linkages_at_extreme_sizes_match_the_50_digit_reference() {
         };
         let reference = Reference::parse(include_str!("../reference/cam_linkage.csv"));
         let reference = reference.scaled(size, Layout { ni: 1, n: 4, no: 7 }, &[3, 4, 5, 6, 7, 8, 9]);
-        check_against("cam_linkage", &m, &reference, &[3], &[6], 150.0 * size, size);
+        check_against(
+            "cam_linkage",
+            &m,
+            &reference,
+            Kinds { lengths: &[3], angle_outputs: &[6], length: 150.0 * size },
+            size,
+        );
         let m = HarmonicCamRocker {
             lift: 20.0 * size,
             y0: 60.0 * size,
@@ -504,6 +527,12 @@ fn cam_linkages_at_extreme_sizes_match_the_50_digit_reference() {
         };
         let reference = Reference::parse(include_str!("../reference/harmonic_cam_rocker.csv"));
         let reference = reference.scaled(size, Layout { ni: 1, n: 2, no: 4 }, &[2, 3, 4, 5]);
-        check_against("harmonic_cam_rocker", &m, &reference, &[], &[], 140.0 * size, size);
+        check_against(
+            "harmonic_cam_rocker",
+            &m,
+            &reference,
+            Kinds { lengths: &[], angle_outputs: &[], length: 140.0 * size },
+            size,
+        );
     }
 }
