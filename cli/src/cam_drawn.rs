@@ -3,7 +3,7 @@
 //! the flat face's plate, moving and turning with the follower), so that `kinloop animate --cam`
 //! shows the cam that makes the declared motion.
 
-use crate::cam::{Found, Shape};
+use crate::cam::{Checks, Found, Shape};
 use kinloop_model::Count;
 use kinloop_runtime::Number;
 use kinloop_runtime::analysis::cam::FlatFace;
@@ -61,10 +61,11 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultD
 
 /// The warning written into the drawing where the cam cannot make the motion (as the checks on
 /// standard error say): a roller larger than the pitch curve's curvature (the profile drawn
-/// crosses itself), or a flat face's profile that is not convex (the face's envelope folds).
+/// crosses itself), or a flat face's profile that is not convex (the face's envelope folds),
+/// at samples, or between them where no sample falls (the checks located between them).
 /// A drawing read without the command's standard error would show such a cam as if it worked.
 fn warning(found: &Found) -> Option<String> {
-    let unit = if found.deg { "°" } else { " rad" };
+    let (unit, angle) = if found.deg { ("°", 180.0 / std::f64::consts::PI) } else { (" rad", 1.0) };
     // Short, as a line under the picture (which is widened to its longest line): what and
     // where, the rest is on standard error.
     let (what, at, why) = match &found.shape {
@@ -72,7 +73,13 @@ fn warning(found: &Found) -> Option<String> {
         Shape::Flat(cam, _) => ("NOT CONVEX", cam.not_convex(), "a flat face cannot follow the law"),
     };
     if at.is_empty() {
-        return None;
+        // Where no sample falls in it, the located checks still see it (the summary says so).
+        let between = match &found.checks {
+            Checks::Roller(c) if c.undercut() => c.min_convex_radius.map(|r| r.x),
+            Checks::Flat(c) if !c.convex() => Some(c.min_radius.x),
+            _ => None,
+        };
+        return between.map(|x| format!("{what} between the samples, at {}{unit}: {why}", Number(x * angle)));
     }
     let input = |k: usize| found.inputs.get(k).copied().unwrap_or(f64::NAN);
     // Each stretch of consecutive samples on its own: one span from the first to the last

@@ -244,6 +244,20 @@ fn an_undercut_cam_is_marked_in_the_drawing() {
     assert!(written.iter().all(|n| !n.contains("UNDERCUT")) && !written.is_empty(), "{written:?}");
 }
 
+/// A rise of half a degree, no sample of the drawn cam in its undercut: the drawing's note says
+/// so, located between the samples (at 30.4885 degrees, as `cam_extremes` and the summary on
+/// standard error put it; `cli/tests/cam.rs` checks the place against the law by hand), where
+/// the drawing showed the cam as if it worked.
+#[test]
+fn an_undercut_between_the_samples_is_marked_in_the_drawing() {
+    let args = ["--cam", "follower", "--guide", "0,1", "--roller", "10", "--params", "rise=0.00872665"];
+    let (svg, stderr) = dwell_cam_svg("undercut_between.svg", &args);
+    assert!(stderr.contains("cam: UNDERCUT between the samples, at 30.4885"), "{stderr}");
+    let written = notes(&svg);
+    let between = "note: UNDERCUT between the samples, at 30.4885";
+    assert!(written.iter().any(|n| n.starts_with(between) && n.contains("the profile crosses itself")), "{written:?}");
+}
+
 /// A three-lobed cam (`s = h / 2 (1 - cos 3 phi)`) under a roller of 30: the pitch curve's
 /// radius of curvature is 24 at 60, 180 and 300 degrees and about 46 between (polar formula
 /// `(r^2 + r'^2)^(3/2) / (r^2 + 2 r'^2 - r r'')`, `r = 40 + s`), so it is undercut in three
