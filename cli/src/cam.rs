@@ -103,44 +103,33 @@ pub struct Found {
     pub deg: bool,
     /// The output columns of the follower's point (`NAME.x`, `NAME.y`).
     pub columns: (usize, usize),
-    /// The cam for the follower asked for.
+    /// The cam for the follower asked for, with its checks.
     pub shape: Shape,
-    /// Its checks, located between the samples.
-    pub checks: Checks,
 }
 
-/// The checks of a [`Shape`] located between the samples, on the sweep's branch: what the
-/// summary on standard error reports.
-pub enum Checks {
-    /// A roller's (or knife edge's).
-    Roller(CamExtremes),
-    /// A flat face's.
-    Flat(FlatFaceExtremes),
-}
-
-/// A cam for a roller (or knife edge), or for a flat face.
+/// A cam for a roller (or knife edge), or for a flat face, each with its checks located
+/// between the samples on the sweep's branch (what the summary on standard error reports).
 pub enum Shape {
     /// For a roller of the radius the profile holds (0: a knife edge).
-    Roller(CamProfile),
+    Roller(CamProfile, CamExtremes),
     /// For a flat face, with where the face lies.
-    Flat(FlatFaceProfile, FaceLine),
+    Flat(FlatFaceProfile, FaceLine, FlatFaceExtremes),
 }
 
 impl Found {
     /// The working profile, in the cam's frame (origin at the pivot).
     pub fn profile(&self) -> &[[f64; 2]] {
         match &self.shape {
-            Shape::Roller(cam) => &cam.profile,
-            Shape::Flat(cam, _) => &cam.profile,
+            Shape::Roller(cam, _) => &cam.profile,
+            Shape::Flat(cam, ..) => &cam.profile,
         }
     }
 
     /// The cam's checks, on standard error.
     pub fn report(&self) {
-        match (&self.shape, &self.checks) {
-            (Shape::Roller(cam), Checks::Roller(checks)) => report(cam, checks, &self.inputs, self.deg),
-            (Shape::Flat(cam, _), Checks::Flat(checks)) => report_flat(cam, checks, &self.inputs, self.deg),
-            _ => unreachable!("a cam's checks are of its shape"),
+        match &self.shape {
+            Shape::Roller(cam, checks) => report(cam, checks, &self.inputs, self.deg),
+            Shape::Flat(cam, _, checks) => report_flat(cam, checks, &self.inputs, self.deg),
         }
     }
 }
@@ -176,8 +165,8 @@ fn written(model: &mut Model, req: &Request, plot: Option<OutFile>) -> Result<()
     };
     found.report();
     let (table, curves) = match found.shape {
-        Shape::Flat(cam, _) => (flat_table(&cam, &found.inputs, req.deg), vec![("cam profile", cam.profile)]),
-        Shape::Roller(cam) => {
+        Shape::Flat(cam, ..) => (flat_table(&cam, &found.inputs, req.deg), vec![("cam profile", cam.profile)]),
+        Shape::Roller(cam, _) => {
             (table(&cam, &found.inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
         }
     };
@@ -321,20 +310,6 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
             Failed(exit::SOLVE_FAILED)
         }
     };
-    let shape = match face {
-        Some(face) => {
-            let guide = match follower {
-                Follower::Translating(g) => g,
-                Follower::Rocking(_) => [0.0, 0.0],
-            };
-            let cam = flat_face_profile(&follower_samples, pivot, face).map_err(refused)?;
-            // The first sample's side for all: the face cannot pass through the cam's pivot.
-            let line = FaceLine { face, guide, away: 1.0 };
-            let away = follower_samples.first().map_or(1.0, |s| line.side_away(s.point[0], pivot));
-            Shape::Flat(cam, FaceLine { away, ..line })
-        }
-        None => Shape::Roller(cam_profile(&follower_samples, pivot, roller).map_err(refused)?),
-    };
     // The checks between the samples: the follower's sample at any input, stepped there on the
     // sweep's branch from the nearest sample (as `kinloop extremes` refines an extreme).
     let n = qs.len() / xs.len().max(1);
@@ -359,13 +334,25 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
         )),
         e => failed(e),
     };
-    let checks = match face {
+    let shape = match face {
         Some(face) => {
-            Checks::Flat(flat_face_extremes(&xs, &follower_samples, pivot, face, &mut eval).map_err(between)?)
+            let guide = match follower {
+                Follower::Translating(g) => g,
+                Follower::Rocking(_) => [0.0, 0.0],
+            };
+            let cam = flat_face_profile(&follower_samples, pivot, face).map_err(refused)?;
+            // The first sample's side for all: the face cannot pass through the cam's pivot.
+            let line = FaceLine { face, guide, away: 1.0 };
+            let away = follower_samples.first().map_or(1.0, |s| line.side_away(s.point[0], pivot));
+            let checks = flat_face_extremes(&xs, &follower_samples, pivot, face, &mut eval).map_err(between)?;
+            Shape::Flat(cam, FaceLine { away, ..line }, checks)
         }
-        None => Checks::Roller(cam_extremes(&xs, &follower_samples, pivot, roller, &mut eval).map_err(between)?),
+        None => {
+            let cam = cam_profile(&follower_samples, pivot, roller).map_err(refused)?;
+            Shape::Roller(cam, cam_extremes(&xs, &follower_samples, pivot, roller, &mut eval).map_err(between)?)
+        }
     };
-    Ok(Found { pivot, turn, inputs, deg: req.deg, columns, shape, checks })
+    Ok(Found { pivot, turn, inputs, deg: req.deg, columns, shape })
 }
 
 /// The follower's options as given (`--rocker -40,140 --flat --face-offset -135`), the cam's

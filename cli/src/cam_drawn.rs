@@ -3,7 +3,7 @@
 //! the flat face's plate, moving and turning with the follower), so that `kinloop animate --cam`
 //! shows the cam that makes the declared motion.
 
-use crate::cam::{Checks, Found, Shape};
+use crate::cam::{Found, Shape};
 use kinloop_model::Count;
 use kinloop_runtime::Number;
 use kinloop_runtime::analysis::cam::FlatFace;
@@ -19,9 +19,9 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultD
     // The profile's size, for the flat face's margins beyond its contacts.
     let size = profile.iter().fold(0.0f64, |r, p| r.max(p[0].hypot(p[1])));
     let touching = match &found.shape {
-        Shape::Roller(cam) if cam.roller > 0.0 => Touching::Roller(point.to_string(), cam.roller),
-        Shape::Roller(_) => Touching::KnifeEdge,
-        Shape::Flat(cam, line) => {
+        Shape::Roller(cam, _) if cam.roller > 0.0 => Touching::Roller(point.to_string(), cam.roller),
+        Shape::Roller(..) => Touching::KnifeEdge,
+        Shape::Flat(cam, line, _) => {
             let (lo, hi) = cam.offset_range();
             let margin = 0.1 * (hi - lo) + 0.05 * size;
             // The face's plate, in the face's frame (its origin, its direction along x): as long
@@ -69,14 +69,14 @@ fn warning(found: &Found) -> Option<String> {
     // Short, as a line under the picture (which is widened to its longest line): what and
     // where, the rest is on standard error.
     let (what, at, why) = match &found.shape {
-        Shape::Roller(cam) => ("UNDERCUT", cam.undercut(), "the profile crosses itself; use a smaller roller"),
-        Shape::Flat(cam, _) => ("NOT CONVEX", cam.not_convex(), "a flat face cannot follow the law"),
+        Shape::Roller(cam, _) => ("UNDERCUT", cam.undercut(), "the profile crosses itself; use a smaller roller"),
+        Shape::Flat(cam, ..) => ("NOT CONVEX", cam.not_convex(), "a flat face cannot follow the law"),
     };
     if at.is_empty() {
         // Where no sample falls in it, the located checks still see it (the summary says so).
-        let between = match &found.checks {
-            Checks::Roller(c) if c.undercut() => c.min_convex_radius.map(|r| r.x),
-            Checks::Flat(c) if !c.convex() => Some(c.min_radius.x),
+        let between = match &found.shape {
+            Shape::Roller(_, c) if c.undercut() => c.min_convex_radius.map(|r| r.x),
+            Shape::Flat(_, _, c) if !c.convex() => Some(c.min_radius.x),
             _ => None,
         };
         return between.map(|x| format!("{what} between the samples, at {}{unit}: {why}", Number(x * angle)));
