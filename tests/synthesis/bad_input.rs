@@ -324,3 +324,18 @@ fn a_search_that_keeps_none_is_refused() {
     let e = Search::default().with_starts(0..2).with_keep(0).run(&p).unwrap_err();
     assert_eq!(e, SynthesisError::InvalidConfig("keep is 0: it must be at least 1".into()));
 }
+
+/// A search of no start and no seed is refused: it returned `Ok` with an empty report, as if the
+/// design had no solution (the command line's `--starts` takes at least 1). With a seed and no
+/// start, it solves the seed.
+#[test]
+fn a_search_of_nothing_to_solve_from_is_refused() {
+    let p = Problem::new(CouplerFourBar::default(), &design(), &three()).unwrap();
+    let e = Search::default().with_starts(0..0).run(&p).unwrap_err();
+    assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.starts_with("starts 0..0 and no seeds")), "{e:?}");
+    let e = Search::default().with_starts(5..5).run(&p).unwrap_err();
+    assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.contains("nothing to solve from")), "{e:?}");
+    let seed = Search::default().with_starts(0..1).run(&p).unwrap().candidates[0].values.clone();
+    let report = Search::default().with_starts(0..0).with_seeds(vec![seed]).run(&p).unwrap();
+    assert_eq!((report.seeds, report.candidates.len()), (1, 1));
+}

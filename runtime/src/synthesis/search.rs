@@ -151,6 +151,17 @@ impl Search {
         if self.keep == 0 {
             return Err(SynthesisError::InvalidConfig("keep is 0: it must be at least 1".into()));
         }
+        // Nothing to solve from returned `Ok` with an empty report, as if the design had no
+        // solution (the command line's `--starts` takes at least 1). A part of a split search
+        // whose range is empty but which holds seeds is not refused: its seeds run where its
+        // range begins at 0, and otherwise it merges as nothing.
+        if self.starts.is_empty() && self.seeds.is_empty() {
+            return Err(SynthesisError::InvalidConfig(format!(
+                "starts {:?} and no seeds: the search has nothing to solve from; give at least one start \
+                 (`with_starts(0..64)`) or a seed",
+                self.starts
+            )));
+        }
         // An inverted range ran nothing, with `Ok`, and merged into a range it never covered.
         if self.starts.start > self.starts.end {
             return Err(SynthesisError::InvalidConfig(format!(
