@@ -442,8 +442,15 @@ impl Cycle {
         ])
     }
 
-    /// Mean driving torque over the cycle (finite for finite torques; NaN for a cycle
-    /// without points).
+    /// Mean driving torque over the cycle: the mean of the samples' torques (finite for finite
+    /// torques; NaN for a cycle without points).
+    ///
+    /// Over a whole steady cycle the inertia term of the torque, `1/2 J'(phi) omega^2`, has mean
+    /// zero, and this is the constant torque that balances the loads, [`Flywheel::mean_torque`]
+    /// (`-mean Q`, which has no inertia term). Sampled coarsely, the samples' mean of that term
+    /// is not zero (it aliases: 0.3 % of a slider-crank's mean torque at 8 samples a turn,
+    /// rounding alone at 72): for the balancing torque of a coarse cycle use
+    /// [`Cycle::flywheel`]'s.
     pub fn mean_torque(&self) -> f64 {
         mean(self.points.iter().map(|p| p.torque))
     }
