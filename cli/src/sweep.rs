@@ -268,15 +268,21 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
     let allowed = match (numbers(from), numbers(to)) {
         (Some(a), Some(b)) if a.len() == b.len() && turns.is_finite() && turns > 0.0 => {
             let fraction = max_turns / turns;
-            let spans: Vec<f64> = a.iter().zip(&b).map(|(a, b)| shortened((b - a).abs() * fraction)).collect();
+            let spans: Vec<f64> =
+                a.iter().zip(&b).map(|(a, b)| eight_digits((b - a).abs() * fraction, true, 1e-11)).collect();
+            // Each end on its own side of `--from`, rounded towards it: the span it makes is
+            // within the one allowed.
             let ends: Vec<String> = a
                 .iter()
                 .zip(&b)
                 .zip(&spans)
-                .map(|((a, b), span)| digits(if b < a { a - span } else { a + span }))
+                .map(|((a, b), span)| match b < a {
+                    true => format!("{}", eight_digits(a - span, false, 0.0)),
+                    false => format!("{}", eight_digits(a + span, true, 0.0)),
+                })
                 .collect();
             match spans.as_slice() {
-                [span] => format!("at most {} apart{unit} (--to {})", digits(*span), ends[0]),
+                [span] => format!("at most {span} apart{unit} (--to {})", ends[0]),
                 _ => format!("at most --to {}{unit}", ends.join(",")),
             }
         }
@@ -290,28 +296,29 @@ pub(crate) fn range_too_long(name: &str, e: &Error, from: &str, to: &str, deg: b
     )))
 }
 
-/// `v` (positive) to eight significant digits, rounded down unless within `1e-11` of `v`
-/// (which the range's check allows for the rounding of the inputs given): a span said as
-/// allowed that is within the limit, and readable (`6283185.3`, `360000000`).
-fn shortened(v: f64) -> f64 {
-    if !(v > 0.0 && v.is_finite()) {
+/// `v` to eight significant digits: the decimal nearest `v`, unless it lies beyond `v` (above it
+/// where `not_above`, else below) by more than `slack` of `v`, then the next on the other side.
+/// So a span said as allowed (`slack` `1e-11`, within what the range's check allows for the
+/// rounding of the inputs given), or an end that keeps the span within it (`slack` 0), is
+/// allowed, and prints as written (`6283185.3`, `360000000`): the decimal is made by a division
+/// (or a product) by an exact power of ten, not by a product by `1e-1`, which gave
+/// `6283185.300000001`.
+fn eight_digits(v: f64, not_above: bool, slack: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
         return v;
     }
-    let unit = 10f64.powi(v.log10().floor() as i32 - 7);
-    let near = (v / unit).round() * unit;
-    let r = if near <= v * (1.0 + 1e-11) { near } else { (v / unit).floor() * unit };
-    if r > 0.0 { r } else { v }
-}
-
-/// `v` written to eight significant digits at most, without trailing zeros (`6283185.3`, not
-/// the `6283185.300000001` that [`shortened`]'s product of a power of ten rounds to).
-fn digits(v: f64) -> String {
-    if !(v.is_finite() && v != 0.0) {
-        return format!("{v}");
-    }
-    let decimals = (7 - v.abs().log10().floor() as i32).max(0) as usize;
-    let s = format!("{v:.decimals$}");
-    if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
+    let k = 7 - v.abs().log10().floor() as i32;
+    let pow = 10f64.powi(k.abs());
+    let scaled = if k >= 0 { v * pow } else { v / pow };
+    let (near, slack) = (scaled.round(), slack * scaled.abs());
+    let within = if not_above { near <= scaled + slack } else { near >= scaled - slack };
+    let d = match (within, not_above) {
+        (true, _) => near,
+        (false, true) => scaled.floor(),
+        (false, false) => scaled.ceil(),
+    };
+    let r = if k >= 0 { d / pow } else { d * pow };
+    if r.is_finite() && pow.is_finite() { r } else { v }
 }
 
 /// The columns the events' file writes before the inputs and the unknowns.

@@ -669,6 +669,25 @@ fn a_range_too_long_says_the_span_allowed_in_the_units_given() {
     assert_eq!(out.status.code(), Some(0), "{err}");
 }
 
+/// The `--to` advised for a range that does not start at 0 keeps the span within the one
+/// allowed: from 0.06, the end 6283185.36 was written to eight digits as 6283185.4, a span
+/// beyond the 6283185.3 allowed, which the sweep refused in turn. It is rounded towards `--from`.
+#[test]
+fn the_to_advised_for_a_range_too_long_is_followed() {
+    let four_bar = shipped("four_bar.kl");
+    let params = ["--params", "a=1,b=3,c=2.5,d=3.2"];
+    let out = kinloop(&[&["sweep", four_bar.as_str(), "--from", "0.06", "--to", "1e7"][..], &params].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    let to = err.split("(--to ").nth(1).and_then(|r| r.split(')').next()).expect("a --to allowed");
+    assert_eq!(to, "6283185.3", "{err}");
+    let args = ["trace", four_bar.as_str(), "--from", "0.06", "--to", to, "--max-points", "5"];
+    let out = kinloop(&[&args[..], &params].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("turns a sweep or a trace follows"), "{err}");
+    assert_eq!(out.status.code(), Some(0), "{err}");
+}
+
 /// An opening bracket never closed before the brace that ends the block is reported where it
 /// is, not at the brace (which closes the block and is no mistake of its own).
 #[test]
