@@ -120,19 +120,21 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
     let kinds = model.input_kinds().to_vec();
-    let motion = model.motion(&from, &to, samples, &guess).map_err(|e| match e {
+    let motion = match model.motion(&from, &to, samples, &guess) {
+        Ok(motion) => motion,
         // The runtime's refusal of the arguments (`to` equal to `from`, a range of more turns
         // than a sweep follows) is a usage error.
-        DrawError::Sweep(e @ Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
-        DrawError::Sweep(e @ Error::RangeTooLong { .. }) => {
-            range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| failed(&e))
+        Err(DrawError::Sweep(e @ Error::InvalidArgument(_))) => return Err(usage(format!("{name}: {e}"))),
+        Err(DrawError::Sweep(e @ Error::RangeTooLong { .. })) => {
+            return Err(range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| failed(&e)));
         }
-        DrawError::Sweep(e) => {
-            eprintln!("error: the sweep failed: {}", named(&name, &in_units(e, &kinds, req.deg)));
-            Failed(exit::SOLVE_FAILED)
+        Err(DrawError::Sweep(e)) => {
+            eprintln!("error: the sweep failed: {}", named(&name, &in_units(e.clone(), &kinds, req.deg)));
+            crate::assembles::note(model, &e, &from, req.deg);
+            return Err(Failed(exit::SOLVE_FAILED));
         }
-        e => failed(&e),
-    })?;
+        Err(e) => return Err(failed(&e)),
+    };
     for (k, e) in motion.events.iter().enumerate() {
         let at: Vec<String> = (motion.inputs.iter().zip(&e.pose.x).zip(&kinds))
             .map(|((n, v), k)| match req.deg && *k == QuantityKind::Angle {

@@ -111,16 +111,21 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // The runtime checks the arguments (at least three samples, `to` apart from `from`, and
     // past it for one input; a range of at most the turns a sweep follows): its refusal is a
     // usage error, not a failed solve.
-    let sampled = sampled.map_err(|e| {
-        bar.finish_and_clear();
-        if let Some(usage) = range_too_long(&name, &e, req.from, req.to, req.deg) {
-            return usage;
+    let sampled = match sampled {
+        Ok(sampled) => sampled,
+        Err(e) => {
+            bar.finish_and_clear();
+            if let Some(usage) = range_too_long(&name, &e, req.from, req.to, req.deg) {
+                return Err(usage);
+            }
+            if let Error::InvalidArgument(_) = e {
+                return Err(exit::usage(format!("{name}: {e}")));
+            }
+            let failed = solve_failed(&name, e.clone(), &input_kinds, req.deg);
+            crate::assembles::note(model, &e, &from, req.deg);
+            return Err(failed);
         }
-        match e {
-            Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
-            e => solve_failed(&name, e, &input_kinds, req.deg),
-        }
-    })?;
+    };
     // Ends a few units in the last place apart: the samples' inputs round to the same numbers
     // (or, the path's length underflowing, to NaN), and no extreme can be located between them.
     // The runtime refuses them per column, in words about its samples: said here, once.

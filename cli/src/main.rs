@@ -46,6 +46,7 @@ macro_rules! eprint {
 }
 
 mod animate;
+mod assembles;
 mod cam;
 mod cam_drawn;
 mod count;

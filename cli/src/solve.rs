@@ -36,8 +36,12 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
                 state.row()
             }
             Err(e) => {
-                let (why, singular) = explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}"));
+                let (why, e) = explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}"));
+                let singular = matches!(e, Some(Error::Singular { .. }));
                 eprintln!("error: {why}");
+                if let Some(e) = &e {
+                    crate::assembles::note(model, e, &x, deg);
+                }
                 // The positions of a limit position exist where its analogs do not.
                 if singular {
                     let unit = if deg { " --deg" } else { "" };
@@ -70,7 +74,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
 /// Why the solve of `model` at `x` from the declared guess failed with `e`, as the runtime says
 /// it ([`Model::explain`]), the inputs of kinds `kinds` in degrees where `deg` is set; `whence`
 /// (the mechanism and the inputs as given) leads it where the explanation does not name them.
-/// With it, whether the failure is a singular position.
+/// With it, the runtime's error (in radians), where the failure is one.
 fn explain(
     model: &mut Model,
     x: &[f64],
@@ -78,14 +82,13 @@ fn explain(
     kinds: &[QuantityKind],
     deg: bool,
     whence: &str,
-) -> (String, bool) {
+) -> (String, Option<Error>) {
     let mut guess = vec![0.0; model.unknowns().len()];
     if model.guess(x, &mut guess).is_err() {
-        return (format!("{whence}: {e}"), false);
+        return (format!("{whence}: {e}"), None);
     }
     let e = model.explain(x, &guess, &NewtonConfig::default(), e);
-    let singular = matches!(e, Error::Singular { .. });
-    (named(whence, &in_units(e, kinds, deg)), singular)
+    (named(whence, &in_units(e.clone(), kinds, deg)), Some(e))
 }
 
 /// The error `e` of the model `name` as a line says it: the error alone where its location

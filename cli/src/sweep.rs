@@ -72,13 +72,18 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // A start that cannot be solved (no assembly, a singular position) fails there too, as
     // `trace`, `extremes` and `solve` fail: no state was solved, so no table is written (it
     // wrote the header alone, a table of no rows, before the error).
-    let first = match sweep.next_ref() {
-        Some(Ok(k)) => Some(Ok(k.table_row())),
+    let first = match sweep.next_ref().map(|r| r.map(|k| k.table_row())) {
         Some(Err(e)) => match range_too_long(&name, &e, req.from, req.to, req.deg) {
             Some(usage) => return Err(usage),
-            None => return Err(solve_failed(&name, e, &kinds[..ni], req.deg)),
+            None => {
+                // The sweep lends the model: given back for the note on where it assembles.
+                drop(sweep);
+                let failed = solve_failed(&name, e.clone(), &kinds[..ni], req.deg);
+                crate::assembles::note(model, &e, &from, req.deg);
+                return Err(failed);
+            }
         },
-        None => None,
+        first => first,
     };
     // The second sample too, where the first solved: a sweep whose input's doubles are too
     // coarse for its steps (`--from 1e17`) fails at its first step, a usage error said before

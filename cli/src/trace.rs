@@ -71,21 +71,26 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     // The runtime checks the path (`to` apart from `from`, at most the turns a sweep follows)
     // and the options (again, as the checks above): its refusal is a usage error, not a failed
     // trace.
-    let traced = model.trace_curve(&from, &to, &guess, &opts).map_err(|e| match e {
-        Error::InvalidArgument(m) => exit::usage(format!("{name}: {m}")),
-        e => range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| {
+    let traced = match model.trace_curve(&from, &to, &guess, &opts) {
+        Ok(traced) => traced,
+        Err(Error::InvalidArgument(m)) => return Err(exit::usage(format!("{name}: {m}"))),
+        Err(e) => {
+            if let Some(usage) = range_too_long(&name, &e, req.from, req.to, req.deg) {
+                return Err(usage);
+            }
             // Only the start is solved as a point: the trace passes singular positions after it.
             let singular_start = matches!(e, Error::Singular { .. });
-            let failed = solve_failed(&name, e, &kinds[..ni], req.deg);
+            let failed = solve_failed(&name, e.clone(), &kinds[..ni], req.deg);
             if singular_start {
                 eprintln!(
                     "note: a trace starts at a limit position, but not where two curves cross (a change point): \
                      start it beside, on the curve to follow"
                 );
             }
-            failed
-        }),
-    })?;
+            crate::assembles::note(model, &e, &from, req.deg);
+            return Err(failed);
+        }
+    };
     // Created before anything is written: a path that cannot be written stops before any output.
     let events_file = output::created(req.events, "the events file")?;
     // The points, then the events: a table that cannot be written (standard output full, its

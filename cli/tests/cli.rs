@@ -346,6 +346,68 @@ fn solve_failures_are_explained() {
     assert_eq!(inputs, ["0", "1"], "{text}");
 }
 
+/// The two numbers of "for phi from X ... to Y ..." in a note on where a mechanism assembles.
+fn stretch(err: &str, unit: &str) -> (f64, f64) {
+    let note = err.lines().find(|l| l.starts_with("note: nearest")).unwrap_or_else(|| panic!("no note: {err}"));
+    let after = |key: &str| -> f64 {
+        let rest = &note[note.find(key).unwrap_or_else(|| panic!("{key}: {note}")) + key.len()..];
+        let end = rest.find([' ']).unwrap_or(rest.len());
+        rest[..end].parse().unwrap_or_else(|e| panic!("{e}: {note}"))
+    };
+    assert!(note.contains("(a limit position) to"), "{note}");
+    assert!(unit.is_empty() || note.matches(unit).count() >= 3, "{note}");
+    (after(" from "), after(" to "))
+}
+
+/// A mechanism that cannot be assembled at the input asked for is told where it does, nearest
+/// it: the stretch between the limit positions, here of a four-bar whose coupler and rocker
+/// (2.5 + 1.5) fall short of frame and crank in line (3.2 + 1), by the law of cosines; or that
+/// its loops close nowhere. The same note after `solve`, `sweep`, `trace` and `extremes`.
+#[test]
+fn a_mechanism_that_cannot_be_assembled_is_told_where_it_does() {
+    let four_bar = shipped("four_bar.kl");
+    let params = "a=1,b=2.5,c=1.5,d=3.2";
+    let limit = ((1.0f64 + 3.2 * 3.2 - 16.0) / (2.0 * 3.2)).acos();
+    let drawing = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("unassembled.svg");
+    let _ = std::fs::remove_file(&drawing);
+    let drawn = drawing.display().to_string();
+    let runs: [&[&str]; 5] = [
+        &["solve", &four_bar, "--params", params, "--at", "3.14"],
+        &["sweep", &four_bar, "--params", params, "--from", "3.14", "--to", "4", "--samples", "5"],
+        &["trace", &four_bar, "--params", params, "--from", "3.14", "--to", "4"],
+        &["extremes", &four_bar, "--params", params, "--from", "3.14", "--to", "4"],
+        &["animate", &four_bar, "--params", params, "--from", "3.14", "--to", "4", "--out", &drawn],
+    ];
+    for args in runs {
+        let out = kinloop(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains("cannot be assembled"), "{err}");
+        assert!(err.contains("note: nearest phi = 3.14, the mechanism assembles on the assembly mode"), "{err}");
+        let (from, to) = stretch(&err, "");
+        assert!((from + limit).abs() < 1e-9 && (to - limit).abs() < 1e-9, "{args:?}: {from} {to} against {limit}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    assert!(!drawing.exists());
+    // In degrees, as the inputs were given.
+    let out = kinloop(&["solve", &four_bar, "--params", params, "--at", "180", "--deg"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("note: nearest phi = 180 deg,"), "{err}");
+    // 180 is as far from this turn's stretch as from the next one's: either is the nearest.
+    let (from, to) = stretch(&err, " deg");
+    let turn = if from > 0.0 { 360.0 } else { 0.0 };
+    let l = limit.to_degrees();
+    assert!((from - turn + l).abs() < 1e-7 && (to - turn - l).abs() < 1e-7, "{err}");
+    // The frame longer than the other three links together: no angle closes the loop.
+    let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=10"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("the mechanism assembles at none of 360 values of phi over the turn about 0"), "{err}");
+    // Where it assembles, or fails otherwise, no note.
+    let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=1.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("singular position") && !err.contains("assembles"), "{err}");
+}
+
 /// Standard output that cannot be written (a full disk) is exit 74 with a message, for every
 /// command that writes there (the help and the version too), never a panic; and so is an
 /// output file that cannot be written.

@@ -1,7 +1,8 @@
 //! The runtime's path algorithms on a run-time model: each is the runtime's one implementation
 //! over its [`Kernel`] (here [`ModelKernel`](crate::ModelKernel), from
 //! [`Model::kernel`]), the compiled mechanisms' through `Compiled`: curve tracing
-//! (`trace_curve_of`), the reachable range (`reachable_of`), the states at given inputs
+//! (`trace_curve_of`), the reachable range (`reachable_of`), where it assembles near an input
+//! (`assembly_near_of`), the states at given inputs
 //! (`sweep_at_of`), the assembly modes (`assembly_modes_of`) and scans over parameter sets
 //! (`fold_sweep_of`, one set's sweep).
 //!
@@ -11,6 +12,7 @@
 use crate::count::Count;
 use crate::model::Model;
 use kinloop_runtime::dims::{Heap, KinBuf};
+use kinloop_runtime::paths::assembles::{Assembly, assembly_near_of};
 use kinloop_runtime::paths::modes::assembly_modes_of;
 use kinloop_runtime::paths::reach::reachable_of;
 use kinloop_runtime::paths::scan::fold_sweep_of;
@@ -70,6 +72,35 @@ impl Model {
     ) -> Result<Reach<Heap>, Error> {
         let k = self.kernel(self.sweep_config)?;
         reachable_of(&k, heap(at), heap(delta), heap(guess), samples)
+    }
+
+    /// Where a model of one angle input assembles nearest the input `at` (where a point solve
+    /// failed with `Error::NoAssembly`, say): point solves from the declared guess at `at` and
+    /// at `samples` angles of the turn about it, nearest first, and from the first that solves
+    /// the stretch reachable on its assembly mode, a turn each way: the runtime's
+    /// `assembly_near` over this model (see [`assembly_near_of`]), with the model's solver
+    /// configuration ([`Model::sweep_config`]). `None` where no sample solves.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// // Coupler and rocker (2.5 + 1.5) fall short of frame and crank (3.2 + 1) in line.
+    /// let text = "pub struct FourBar {
+    ///     params a = 1, b = 2.5, c = 1.5, d = 3.2;
+    ///     input phi;
+    ///     unknowns beta = 0.5, gamma = 1.5;
+    ///     loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    /// }";
+    /// let mut m = Model::read("four_bar.kl", text).unwrap();
+    /// assert!(m.solve(&[3.14]).is_err());
+    /// let near = m.assembly_near(&[3.14], 360).unwrap().expect("it assembles somewhere");
+    /// // Coupler and rocker stretched out, by the law of cosines: |A + a e(phi) - D| = b + c.
+    /// let limit = ((1.0 + 3.2f64.powi(2) - 4.0f64.powi(2)) / (2.0 * 3.2)).acos();
+    /// assert!((near.reach.to[0] - limit).abs() < 1e-9 && (near.reach.from[0] + limit).abs() < 1e-9);
+    /// assert!(!near.turns_fully());
+    /// ```
+    pub fn assembly_near(&mut self, at: &[f64], samples: usize) -> Result<Option<Assembly<Heap>>, Error> {
+        let k = self.kernel(self.sweep_config)?;
+        assembly_near_of(&k, heap(at), samples)
     }
 
     /// The states at the given inputs, in their order, followed along the path through them

@@ -459,6 +459,16 @@ macro_rules! __named_api {
             ) -> ::core::result::Result<::std::vec::Vec<$state>, $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::assembly_modes(self, input)
             }
+
+            /// Where a mechanism of one angle input assembles nearest `at`, where it may not:
+            /// the stretch between its limit positions, or `None` where its loops close nowhere
+            /// on the turn (see [`Named::assembly_near`](::kinloop::Named::assembly_near)).
+            pub fn assembly_near(
+                &self,
+                at: impl ::core::convert::Into<$inputs>,
+            ) -> ::core::result::Result<::core::option::Option<$crate::Assembly<$inputs>>, $crate::Error> {
+                <Self as $crate::Named<$n, $ni, $no>>::assembly_near(self, at)
+            }
         }
 
         impl $state {

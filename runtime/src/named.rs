@@ -12,6 +12,7 @@ use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::kernel::Compiled;
 use crate::mechanism::{Mechanism, Sensitivities, given_position};
+use crate::paths::assembles::{ASSEMBLY_SAMPLES, Assembly, assembly_near};
 use crate::paths::config::SweepConfig;
 use crate::paths::modes::assembly_modes;
 use crate::paths::outcome::SweepResult;
@@ -181,6 +182,17 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     ) -> Result<Reach<Self::Inputs>, Error> {
         let reach = reachable(self, at.into().into(), delta.into().into(), (*guess).into(), samples)?;
         Ok(reach.map_inputs(Self::Inputs::from))
+    }
+
+    /// Where a mechanism of one angle input assembles nearest `at` (where a point solve failed
+    /// with [`Error::NoAssembly`], say): point solves from the declared guess at `at` and at a
+    /// degree's spacing over the turn about it ([`ASSEMBLY_SAMPLES`]), nearest first, and from
+    /// the first that solves the stretch reachable on its assembly mode (see
+    /// [`assembly_near`](crate::paths::assembles::assembly_near)). `None` where the loops close
+    /// nowhere on the turn from the declared guess.
+    fn assembly_near(&self, at: impl Into<Self::Inputs>) -> Result<Option<Assembly<Self::Inputs>>, Error> {
+        let near = assembly_near(self, at.into().into(), ASSEMBLY_SAMPLES)?;
+        Ok(near.map(|a| a.map_inputs(Self::Inputs::from)))
     }
 
     /// The whole solution curve through `guess` at `from`, first towards `to`, through limit

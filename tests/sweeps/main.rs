@@ -10,6 +10,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod assembly_near;
 mod assur_groups;
 mod change_point_samples;
 mod events_extreme_scales;

@@ -1,9 +1,10 @@
 //! Following a mechanism along its inputs: sweeps that never jump branches ([`sweep`], configured
 //! by [`config`]) and their results with the reason they stopped ([`outcome`]), pseudo-arclength continuation through
 //! limit positions and kinks ([`curve`], [`trace`]), the states at given inputs ([`sweep_at`]), the reachable
-//! input range ([`reach`]), design-space
+//! input range ([`reach`]) and where a mechanism assembles near an input ([`assembles`]), design-space
 //! scans ([`scan`]) and the search for assembly modes ([`modes`]).
 
+pub mod assembles;
 pub mod config;
 mod crossing;
 pub mod curve;

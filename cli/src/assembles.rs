@@ -1,0 +1,71 @@
+//! The note after "the mechanism cannot be assembled" at the input asked for: where it does,
+//! nearest that input (the runtime's `assembly_near` over the model), so that a designer learns
+//! the input range to ask for, or that the lengths close nowhere, without trying inputs one by
+//! one. The error line names the mechanism; the note does not again.
+
+use crate::solve::degrees;
+use kinloop_model::Model;
+use kinloop_runtime::paths::assembles::ASSEMBLY_SAMPLES;
+use kinloop_runtime::{Error, Number, QuantityKind};
+
+/// Writes the note on standard error where `e` is a failure to assemble at the inputs `at` (in
+/// radians: the error's own location, a sweep's or a trace's start, not a later step) of a
+/// model of one angle input, its numbers in the units written (degrees where `deg` is set);
+/// nothing otherwise, nor where the search itself fails (the error already said what it could).
+pub fn note(model: &mut Model, e: &Error, at: &[f64], deg: bool) {
+    let here = e.location().is_some_and(|l| l.inputs.iter().map(|(_, v)| *v).eq(at.iter().copied()));
+    if !matches!(e, Error::NoAssembly { .. })
+        || !here
+        || at.len() != 1
+        || model.input_kinds().first() != Some(&QuantityKind::Angle)
+    {
+        return;
+    }
+    if let Some(text) = text(model, at[0], deg) {
+        eprintln!("note: {text}");
+    }
+}
+
+/// The note's text for the model at the input angle `at` (radians).
+fn text(model: &mut Model, at: f64, deg: bool) -> Option<String> {
+    let input = model.inputs()[0].clone();
+    let shown = |v: f64| if deg { format!("{} deg", Number(degrees(v))) } else { Number(v).to_string() };
+    let near = model.assembly_near(&[at], ASSEMBLY_SAMPLES).ok()?;
+    let Some(a) = near else {
+        return Some(format!(
+            "from the declared guess, the mechanism assembles at none of {ASSEMBLY_SAMPLES} values of {input} over \
+             the turn about {}, a degree apart: its loops close at no input angle with these lengths (or only over \
+             less than a degree)",
+            shown(at)
+        ));
+    };
+    let (found, from, to) = (a.found[0], a.reach.from[0], a.reach.to[0]);
+    // The point solve at `at` failed from the declared guess, but a sweep on the mode found
+    // reaches it (Newton's method from a guess far from the position there).
+    if from <= at && at <= to {
+        return Some(format!(
+            "the mechanism assembles at {input} = {found_s} from the declared guess, and a sweep from there on that \
+             assembly mode reaches {input} = {at_s}: `kinloop sweep --from {found_s} --to {at_s}{unit}` (the \
+             declared guess is far from the position at {at_s})",
+            found_s = plain(found, deg),
+            at_s = plain(at, deg),
+            unit = if deg { " --deg" } else { "" },
+        ));
+    }
+    let end = |v: f64, limit: bool| match limit {
+        true => format!("{} (a limit position)", shown(v)),
+        false => format!("{} (a turn from {}: no limit position within it)", shown(v), shown(found)),
+    };
+    Some(format!(
+        "nearest {input} = {}, the mechanism assembles on the assembly mode of the declared guess for {input} from \
+         {} to {}",
+        shown(at),
+        end(from, a.reach.from_event.is_some()),
+        end(to, a.reach.to_event.is_some()),
+    ))
+}
+
+/// `v` (radians) as an option takes it: degrees where `deg` is set.
+fn plain(v: f64, deg: bool) -> String {
+    Number(if deg { degrees(v) } else { v }).to_string()
+}

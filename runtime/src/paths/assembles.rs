@@ -1,0 +1,131 @@
+//! Where a one-input mechanism assembles nearest an input angle at which it may not
+//! ([`assembly_near_of`], answering with [`Assembly`]): what to tell a designer whose mechanism
+//! "cannot be assembled" at the input asked for.
+
+use super::reach::{Reach, reachable_of};
+use crate::dims::{Dims, KinState};
+use crate::error::Error;
+use crate::kinds::QuantityKind;
+use crate::mechanism::Mechanism;
+use crate::mechanism::kernel::{Compiled, Kernel, X, check_inputs_finite};
+use std::f64::consts::TAU;
+
+/// The angles of the turn about the input asked for at which [`assembly_near`] tries a point
+/// solve: one a degree. A stretch of assembly narrower than that can be missed (a mechanism
+/// within a degree of not assembling at all), which the answer's wording allows for.
+pub const ASSEMBLY_SAMPLES: usize = 360;
+
+/// Where a mechanism assembles nearest the input asked for ([`assembly_near`]): the sample
+/// nearest it at which a point solve from the declared guess succeeds, and the stretch of the
+/// input reachable from there on that solve's assembly mode, a turn each way at most.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Assembly<X> {
+    /// The sample nearest the input asked for at which the point solve from the declared guess
+    /// succeeds (the input asked for itself, where it does).
+    pub found: X,
+    /// The stretch reachable from `found` on its assembly mode: its ends are limit positions
+    /// (with their events) or, where no limit position comes within a turn, the search's ends,
+    /// a turn from `found` (a crank that turns fully on this mode).
+    pub reach: Reach<X>,
+}
+
+impl<X> Assembly<X> {
+    /// Whether the input turns fully on this assembly mode: neither end of the stretch is a
+    /// limit position within a turn of where it was found.
+    pub fn turns_fully(&self) -> bool {
+        self.reach.from_event.is_none() && self.reach.to_event.is_none()
+    }
+
+    /// The same answer with the inputs converted (e.g. to named inputs).
+    pub fn map_inputs<Y>(self, mut f: impl FnMut(X) -> Y) -> Assembly<Y> {
+        Assembly { found: f(self.found), reach: self.reach.map_inputs(f) }
+    }
+}
+
+/// Where a mechanism of one angle input assembles nearest the input `at` (where a point solve
+/// failed with [`Error::NoAssembly`], say): point solves from the declared guess
+/// ([`Mechanism::guess_flat`] at each angle) at `at`, then at `samples` angles of the turn about it,
+/// spread evenly and tried nearest first; from the first that solves, the stretch reachable on
+/// its assembly mode ([`reachable`](super::reach::reachable), a turn each way). `None` where no
+/// sample solves: the loops close nowhere on the turn from the declared guess, within the
+/// samples' spacing (a stretch narrower than that, or one that only another guess reaches,
+/// goes unseen). A compiled mechanism's [`assembly_near_of`] (through [`Compiled`]).
+///
+/// A sample counts as not assembling where its solve fails with [`Error::NoAssembly`],
+/// [`Error::NoConvergence`] (Newton's method from the declared guess, far from any position)
+/// or [`Error::Singular`] (a limit position met to the rounding, from which no sweep leaves).
+///
+/// Errors: a mechanism of other than one input, or whose input is not an angle, fewer than 2
+/// or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples, an input so large that
+/// the samples' spacing rounds away ([`Error::InvalidArgument`]); `at` not finite
+/// ([`Error::NonFinite`]); any other error of a point solve (a declared expression that leaves
+/// its domain) or of the sweeps.
+pub fn assembly_near<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    at: [f64; NI],
+    samples: usize,
+) -> Result<Option<Assembly<[f64; NI]>>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    assembly_near_of(&Compiled(m), at, samples)
+}
+
+/// [`assembly_near`] over any [`Kernel`] (a compiled mechanism's, or one whose sizes are known
+/// at run time: `kinloop_model::Model::assembly_near`), with the kernel's configuration
+/// ([`Kernel::solver_config`]).
+pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Option<Assembly<X<K>>>, Error> {
+    let d = m.dims();
+    if d.ni() != 1 || m.input_kind(0) != QuantityKind::Angle {
+        let has = match d.ni() {
+            1 => format!("its input `{}` is not an angle", m.input_name(0)),
+            n => format!("it has {n} inputs"),
+        };
+        return Err(Error::InvalidArgument(format!(
+            "assembly_near: `{}`: {has}, and the search samples the turn of a single input angle",
+            m.name()
+        )));
+    }
+    if samples < 2 {
+        return Err(Error::InvalidArgument(format!(
+            "assembly_near: {samples} samples asked for: the turn needs at least 2"
+        )));
+    }
+    crate::analysis::check_sample_count("samples of `assembly_near`", samples).map_err(Error::InvalidArgument)?;
+    check_inputs_finite(m, &at)?;
+    let cfg = m.solver_config();
+    m.check_param_angles(&cfg.newton)?;
+    let spacing = TAU / samples as f64;
+    let x0 = at[0];
+    // Beyond this the samples would not be apart (a turn's doubles too coarse): no search.
+    if x0 + spacing == x0 || x0 - spacing == x0 {
+        return Err(Error::InvalidArgument(format!(
+            "assembly_near: {x0} rad is too large for the turn about it to be sampled every {spacing} rad"
+        )));
+    }
+    let input = |x: f64| {
+        let mut v = at.clone();
+        v[0] = x;
+        v
+    };
+    // Nearest first: `at`, then one spacing each way, two, ... up to half a turn each way.
+    let offsets = (0..=samples / 2).flat_map(|j| if j == 0 { vec![0.0] } else { vec![j as f64, -(j as f64)] });
+    for j in offsets {
+        let x = input(x0 + j * spacing);
+        let guess = m.guess(&x);
+        match m.kinematics(&x, &guess, &cfg.newton) {
+            Ok(k) => {
+                let mut q = guess;
+                q.as_mut().copy_from_slice(k.q());
+                // A turn each way: a stretch between two limit positions is shorter than that,
+                // and one that reaches both ends turns fully.
+                let reach = reachable_of(m, x.clone(), input(TAU), q, samples / 2 + 1)?;
+                return Ok(Some(Assembly { found: x, reach }));
+            }
+            Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(None)
+}

@@ -1,0 +1,139 @@
+//! `assembly_near`: where a one-input mechanism assembles nearest an input at which it does
+//! not, checked against the four-bar's limit positions by the law of cosines (coupler and rocker
+//! stretched out or folded: the distance from the crank pin to the rocker's pivot equals their
+//! sum or difference), at several sizes, by closed forms and by Newton's method.
+
+use kinloop::Error;
+use kinloop::paths::assembles::{ASSEMBLY_SAMPLES, assembly_near};
+use kinloop_fixtures::{FiveBar, FourBar};
+use std::f64::consts::{PI, TAU};
+
+use crate::support::{four_bar_limit, tol};
+
+kinloop::mechanism! {
+    /// The four-bar solved by Newton's method: a far guess fails to converge rather than to
+    /// assemble, which the search counts as not assembling there.
+    #[kinloop(newton)]
+    pub struct NewtonBar {
+        params a, b, c, d;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+    }
+}
+
+kinloop::mechanism! {
+    /// A dyad on a slide: its input is a length, whose "turn" the search cannot sample.
+    pub struct SlideDyad {
+        params b = 2.0, c = 1.5, h = 1.0;
+        input s;
+        unknowns beta = 0.5, gamma = 1.5;
+        loop slide: (s, 0) + b @ beta == (0, h) + c @ gamma;
+    }
+}
+
+/// Coupler and rocker (2.5 + 1.5 = 4) fall short of frame and crank in line (3.2 + 1): the crank
+/// rocks between the angles where `|A + a e(phi) - D| = b + c`.
+fn short_reach(scale: f64) -> FourBar {
+    FourBar { a: scale, b: 2.5 * scale, c: 1.5 * scale, d: 3.2 * scale }
+}
+
+#[test]
+fn a_four_bar_beyond_its_reach_is_told_the_stretch_between_its_limit_positions() {
+    let lim = four_bar_limit(1.0, 3.2, 4.0);
+    for scale in [1e-6, 1.0, 1e6] {
+        let m = short_reach(scale);
+        for at in [3.1, -3.0, 2.5] {
+            assert!(matches!(m.position(at, &m.guess(at)), Err(Error::NoAssembly { .. })), "{at}");
+            let near = assembly_near(&m, [at], ASSEMBLY_SAMPLES).unwrap().expect("it assembles");
+            assert_close!(near.reach.to[0], lim, tol::LOCATED, "{scale} {at}: {near:?}");
+            assert_close!(near.reach.from[0], -lim, tol::LOCATED, "{scale} {at}: {near:?}");
+            assert!(near.reach.from_event.is_some() && near.reach.to_event.is_some(), "{near:?}");
+            assert!(!near.turns_fully());
+            // The sample nearest `at` inside the stretch: within a degree of its near end.
+            let end = if at > 0.0 { lim } else { -lim };
+            assert!((near.found[0] - end).abs() <= TAU / ASSEMBLY_SAMPLES as f64, "{at}: {near:?}");
+            assert!(m.position(near.found[0], &m.guess(near.found[0])).is_ok());
+        }
+    }
+}
+
+#[test]
+fn the_stretch_is_the_one_on_the_turn_of_the_input_asked_for() {
+    let m = short_reach(1.0);
+    let lim = four_bar_limit(1.0, 3.2, 4.0);
+    for turns in [-3.0, 5.0] {
+        let at = 3.1 + turns * TAU;
+        let near = m.assembly_near(at).unwrap().expect("it assembles");
+        // The copy of the stretch on `at`'s turn (its end 0.69 from `at`; the next turn's is 0.77).
+        let centre = (near.reach.from.phi + near.reach.to.phi) / 2.0;
+        assert_close!(centre, turns * TAU, <= 1e-9, "{near:?}");
+        assert_close!(near.reach.to.phi - near.reach.from.phi, 2.0 * lim, tol::LOCATED, "{near:?}");
+        assert!((near.found.phi - at).abs() <= PI);
+    }
+}
+
+#[test]
+fn a_four_bar_that_folds_short_assembles_on_the_far_side() {
+    // Coupler less rocker (3.5 - 0.8 = 2.7) beyond the shortest distance from crank pin to
+    // pivot (3.2 - 1): the links close only where that distance is at least 2.7, about pi.
+    let m = FourBar { a: 1.0, b: 3.5, c: 0.8, d: 3.2 };
+    let lim = four_bar_limit(1.0, 3.2, 2.7);
+    let near = assembly_near(&m, [0.0], 360).unwrap().expect("it assembles");
+    assert_close!(near.reach.from[0], lim, tol::LOCATED, "{near:?}");
+    assert_close!(near.reach.to[0], TAU - lim, tol::LOCATED, "{near:?}");
+    assert!((near.found[0] - lim).abs() <= TAU / 360.0, "{near:?}");
+}
+
+#[test]
+fn where_it_assembles_the_input_itself_is_found_and_a_crank_turns_fully() {
+    // A crank-rocker: the crank turns fully.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let near = assembly_near(&m, [0.7], 360).unwrap().expect("it assembles");
+    assert_eq!(near.found, [0.7]);
+    assert!(near.turns_fully(), "{near:?}");
+    assert_close!(near.reach.from[0], 0.7 - TAU, 1e-15);
+    assert_close!(near.reach.to[0], 0.7 + TAU, 1e-15);
+    // Inside the stretch of a rocking crank: found at once, the same stretch.
+    let lim = four_bar_limit(1.0, 3.2, 4.0);
+    let near = assembly_near(&short_reach(1.0), [0.3], 360).unwrap().expect("it assembles");
+    assert_eq!(near.found, [0.3]);
+    assert_close!(near.reach.to[0], lim, tol::LOCATED, "{near:?}");
+}
+
+#[test]
+fn links_that_close_nowhere_are_none() {
+    // The frame longer than the other three links together.
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 10.0 };
+    assert_eq!(assembly_near(&m, [0.0], 360).unwrap(), None);
+    assert_eq!(m.assembly_near(2.0).unwrap(), None);
+}
+
+#[test]
+fn newtons_method_finds_the_same_stretch() {
+    let m = NewtonBar { a: 1.0, b: 2.5, c: 1.5, d: 3.2 };
+    let lim = four_bar_limit(1.0, 3.2, 4.0);
+    assert!(m.position(3.1, &m.guess(3.1)).is_err());
+    let near = assembly_near(&m, [3.1], 360).unwrap().expect("it assembles");
+    assert_close!(near.reach.to[0], lim, tol::LOCATED, "{near:?}");
+    assert_close!(near.reach.from[0], -lim, tol::LOCATED, "{near:?}");
+}
+
+/// Asserts an `Error::InvalidArgument` whose message contains `words`.
+fn invalid<T: std::fmt::Debug>(r: Result<T, Error>, words: &str) {
+    match r {
+        Err(Error::InvalidArgument(text)) => assert!(text.contains(words), "{text}"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn what_it_cannot_search_is_an_error() {
+    let m = short_reach(1.0);
+    invalid(assembly_near(&m, [0.0], 1), "at least 2");
+    invalid(assembly_near(&m, [0.0], kinloop::analysis::MAX_SAMPLES + 1), "at most");
+    invalid(assembly_near(&m, [1e300], 360), "too large");
+    assert!(matches!(assembly_near(&m, [f64::NAN], 360), Err(Error::NonFinite { .. })));
+    invalid(assembly_near(&FiveBar::default(), [0.0, 1.0], 360), "2 inputs");
+    invalid(assembly_near(&SlideDyad::default(), [0.5], 360), "not an angle");
+}
