@@ -150,7 +150,8 @@ impl Declaration {
 #[derive(Subcommand)]
 enum Command {
     /// Checks a declaration and reports its structure: counts, mobility, the blocks in solve
-    /// order and how each is solved.
+    /// order and how each is solved; for one input angle and every parameter given, how far the
+    /// input moves from 0 (whether it turns fully or rocks between two limit positions).
     Check {
         #[command(flatten)]
         decl: Declaration,
@@ -570,7 +571,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
     output::not_standard_output(&written)?;
     match cli.command {
         Command::Check { decl } => {
-            let model = match decl.load() {
+            let mut model = match decl.load() {
                 Ok(model) => model,
                 // Not evaluated at run time (said on standard error): its structure still says
                 // which block is too large.
@@ -584,7 +585,7 @@ fn run(cli: Cli) -> Result<(), Failed> {
                 Err(failed) => return Err(failed),
             };
             // Written, not printed: `print!` panics where standard output cannot be written.
-            output::text(&report::structure(&model), "the report")
+            output::text(&report::structure(&mut model), "the report")
         }
         Command::Solve { decl, at, deg } => {
             let mut model = decl.solvable()?;

@@ -1,11 +1,15 @@
 //! `kinloop check`: the structure report of a declaration.
 
 use kinloop_model::{Count, Model};
+use kinloop_runtime::paths::assembles::ASSEMBLY_SAMPLES;
+use kinloop_runtime::{Error, EventKind, Number, QuantityKind};
 use std::fmt::Write;
 
 /// The decomposition (counts, mobility, blocks and how each is solved), then the parameters
-/// with their values, the quantities with their units, and the size of the run-time program.
-pub fn structure(model: &Model) -> String {
+/// with their values, the quantities with their units, the size of the run-time program, and
+/// for a mechanism of one angle input whose parameters all have values, how far that input
+/// moves ([`motion`]).
+pub fn structure(model: &mut Model) -> String {
     let mut s = format!("{}\n", model.decomposition());
     let params: Vec<String> = model
         .params()
@@ -37,5 +41,63 @@ pub fn structure(model: &Model) -> String {
     let _ = writeln!(s, "outputs: {}", list(&quantities[ni + nu..], false));
     let (registers, instructions) = (Count(model.registers(), "register"), Count(model.instructions(), "instruction"));
     let _ = writeln!(s, "run-time program: {registers}, {instructions}");
+    if let Some(motion) = motion(model) {
+        let _ = writeln!(s, "motion: {motion}");
+    }
     s
+}
+
+/// How far the one angle input of `model` moves from 0 on the assembly mode of the declared
+/// guess there (the runtime's `assembly_near`): whether it turns fully (no limit position within
+/// a turn either way) or rocks between two limit positions, as a designer asks of a linkage
+/// first (a four-bar's Grashof type, told by its motion rather than by its link lengths);
+/// where the mechanism does not assemble at 0, the stretch nearest it. `None` for other
+/// mechanisms, or where a parameter has no value.
+fn motion(model: &mut Model) -> Option<String> {
+    let one_angle = model.input_kinds() == [QuantityKind::Angle];
+    if !one_angle || model.param_values().iter().any(Option::is_none) {
+        return None;
+    }
+    let input = model.inputs()[0].clone();
+    let found = match model.assembly_near(&[0.0], ASSEMBLY_SAMPLES) {
+        Ok(Some(found)) => found,
+        Ok(None) => {
+            return Some(format!(
+                "from the declared guess, the mechanism assembles at none of {ASSEMBLY_SAMPLES} values of {input} over \
+                 a turn"
+            ));
+        }
+        // A change point (a parallelogram's, its links in line): two branches cross there.
+        Err(Error::SweepStopped { kind: EventKind::SingularCrossing, at }) => {
+            let x = at.inputs.first().map_or(f64::NAN, |(_, v)| *v);
+            return Some(format!(
+                "{input} meets a change point at {input} = {} on the assembly mode of the declared guess at 0: two \
+                 branches of the motion cross there, and the input alone does not say which one the linkage follows \
+                 (`kinloop sweep --through-crossings` goes on along the smooth continuation)",
+                Number(x)
+            ));
+        }
+        Err(e) => return Some(format!("not determined: {e}")),
+    };
+    let (from, to) = (found.reach.from[0], found.reach.to[0]);
+    let end = |v: f64, limit: bool| {
+        if limit { format!("{} (a limit position)", Number(v)) } else { format!("{} (a turn on)", Number(v)) }
+    };
+    let ends =
+        format!("{} and {}", end(from, found.reach.from_event.is_some()), end(to, found.reach.to_event.is_some()));
+    Some(match (found.found[0] == 0.0, found.turns_fully()) {
+        (true, true) => format!(
+            "{input} turns fully from 0 on the assembly mode of the declared guess (no limit position within a turn \
+             either way)"
+        ),
+        (true, false) => format!("from 0 on the assembly mode of the declared guess, {input} moves between {ends}"),
+        (false, true) => format!(
+            "the point solve at {input} = 0 from the declared guess fails, but {input} turns fully on the assembly \
+             mode found at {}",
+            Number(found.found[0])
+        ),
+        (false, false) => format!(
+            "the mechanism does not assemble at {input} = 0 from the declared guess; nearest, it does between {ends}"
+        ),
+    })
 }

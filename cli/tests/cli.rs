@@ -85,6 +85,36 @@ fn check_reports_the_structure() {
     assert!(text.contains("x_c [length unit]"), "{text}");
 }
 
+/// `check` tells how far a one-input linkage's input moves from 0 on the declared guess's
+/// assembly mode, by its motion: a crank-rocker's crank turns fully; a four-bar whose coupler
+/// and rocker (2.5 + 1.5) fall short of frame and crank in line rocks between the angles where
+/// they stretch out, by the law of cosines; links that close nowhere are said so.
+#[test]
+fn check_tells_how_far_the_input_moves() {
+    let four_bar = shipped("four_bar.kl");
+    let motion = |params: &str| {
+        let out = kinloop(&["check", &four_bar, "--params", params]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        text.lines().find_map(|l| l.strip_prefix("motion: ")).unwrap_or_else(|| panic!("{text}")).to_string()
+    };
+    assert!(motion("a=1,b=3,c=2.5,d=3.2").starts_with("phi turns fully from 0"));
+    let rocks = motion("a=1,b=2.5,c=1.5,d=3.2");
+    let limit = ((1.0f64 + 3.2 * 3.2 - 16.0) / (2.0 * 3.2)).acos();
+    let number = |after: &str| -> f64 {
+        let rest = &rocks[rocks.find(after).unwrap_or_else(|| panic!("{rocks}")) + after.len()..];
+        rest[..rest.find(' ').unwrap_or(rest.len())].parse().unwrap_or_else(|e| panic!("{e}: {rocks}"))
+    };
+    assert!(rocks.starts_with("from 0 on the assembly mode of the declared guess, phi moves between"), "{rocks}");
+    assert!((number("between ") + limit).abs() < 1e-9 && (number(") and ") - limit).abs() < 1e-9, "{rocks}");
+    assert!(motion("a=1,b=3,c=2.5,d=10").contains("assembles at none of 360 values of phi"));
+    // A parallelogram: at 0 its links lie in line, a change point.
+    assert!(motion("a=1,b=3,c=1,d=3").starts_with("phi meets a change point at phi = "));
+    // No values for the parameters: nothing to move.
+    let out = kinloop(&["check", &four_bar]);
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("motion:"));
+}
+
 #[test]
 fn errors_have_carets_and_exit_codes() {
     let dir = std::env::temp_dir().join(format!("kinloop-cli-{}", std::process::id()));

@@ -9,18 +9,9 @@ use kinloop_fixtures::{FiveBar, FourBar};
 use std::f64::consts::{PI, TAU};
 
 use crate::support::{four_bar_limit, tol};
-
-kinloop::mechanism! {
-    /// The four-bar solved by Newton's method: a far guess fails to converge rather than to
-    /// assemble, which the search counts as not assembling there.
-    #[kinloop(newton)]
-    pub struct NewtonBar {
-        params a, b, c, d;
-        input phi;
-        unknowns beta = 0.5, gamma = 1.5;
-        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
-    }
-}
+// The four-bar solved by Newton's method: a far guess fails to converge rather than to
+// assemble, which the search counts as not assembling there.
+use crate::sweep_api::NewtonFourBar;
 
 kinloop::mechanism! {
     /// A dyad on a slide: its input is a length, whose "turn" the search cannot sample.
@@ -111,7 +102,7 @@ fn links_that_close_nowhere_are_none() {
 
 #[test]
 fn newtons_method_finds_the_same_stretch() {
-    let m = NewtonBar { a: 1.0, b: 2.5, c: 1.5, d: 3.2 };
+    let m = NewtonFourBar { a: 1.0, b: 2.5, c: 1.5, d: 3.2 };
     let lim = four_bar_limit(1.0, 3.2, 4.0);
     assert!(m.position(3.1, &m.guess(3.1)).is_err());
     let near = assembly_near(&m, [3.1], 360).unwrap().expect("it assembles");
