@@ -262,11 +262,24 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     // Each sample's input (radians) and unknowns: where the checks between the samples start
     // their steps from.
     let (mut xs, mut qs) = (Vec::with_capacity(req.samples), Vec::new());
+    let mut stopped = None;
     for state in sweep {
-        let s = state.map_err(failed)?;
+        let s = match state {
+            Ok(s) => s,
+            Err(e) => {
+                stopped = Some(e);
+                break;
+            }
+        };
         follower_samples.push(sample_of(&s));
         xs.push(s.x()[0]);
         qs.extend_from_slice(s.q());
+    }
+    // The sweep, done, gives the model back: where it could not start, where it assembles.
+    if let Some(e) = stopped {
+        let failure = failed(e.clone());
+        crate::assembles::note(model, &e, &[start], req.deg);
+        return Err(failure);
     }
     // Each sample's input in the units given, between the ends as given (`86`, not
     // `86.00000000000001` from the radians), as `kinloop sweep` writes its samples: in degrees

@@ -432,6 +432,12 @@ fn a_mechanism_that_cannot_be_assembled_is_told_where_it_does() {
     let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=10"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("the mechanism assembles at none of 360 values of phi over the turn about 0"), "{err}");
+    // The cam's turn too: a rod of 10 between the follower and the rocker 40 long, 140 up.
+    let cam = ["cam", &shipped("dwell_cam.kl"), "--point", "follower", "--guide", "0,1", "--roller", "10"];
+    let out = kinloop(&[&cam[..], &["--params", "l_rod=10"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("note: from the declared guess, the mechanism assembles at none of 360"), "{err}");
     // Where it assembles, or fails otherwise, no note.
     let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=1.5"]);
     let err = String::from_utf8_lossy(&out.stderr);
