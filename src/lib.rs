@@ -60,7 +60,10 @@
 //! `m.trace_curve(from, to, &guess, &TraceConfig::default())` follows the whole solution curve
 //! through limit positions (e.g. the closed curve of a non-Grashof four-bar);
 //! `m.assembly_modes(input)?` lists the distinct assembly modes so one can be picked by a readable
-//! rule ("elbow up": `.into_iter().find(|s| s.out.c.y > 0.0)`). Arclength continuation measures
+//! rule ("elbow up": `.into_iter().find(|s| s.out.c.y > 0.0)`); and `m.assembly_near(phi)?`, for
+//! a mechanism of one input angle, where it assembles nearest `phi` (the stretch between its
+//! limit positions, or a crank that turns fully: an [`Assembly`]), or `None` where its loops close
+//! nowhere on the turn. Arclength continuation measures
 //! angles in radians and lengths in units of the mechanism's size, so events are located at the
 //! same inputs whatever the unit of length.
 //!
@@ -343,6 +346,16 @@
 //! assert!(matches!(err, kinloop::Error::NoAssembly { .. }), "{err}");
 //! let bad = FourBar { a: f64::NAN, ..m };
 //! assert!(matches!(bad.solve(0.0), Err(kinloop::Error::NonFinite { .. })));
+//! // Nowhere on the turn, from the declared guess:
+//! assert!(m.assembly_near(0.0)?.is_none());
+//! // Coupler and rocker (2.5 + 1.5) short of frame and crank in line (3.2 + 1): not at pi, but
+//! // between the limit positions where they stretch out (the law of cosines).
+//! let m = FourBar { a: 1.0, b: 2.5, c: 1.5, d: 3.2 };
+//! assert!(matches!(m.solve(3.1), Err(kinloop::Error::NoAssembly { .. })));
+//! let near = m.assembly_near(3.1)?.expect("it assembles");
+//! let limit = ((1.0f64 + 3.2 * 3.2 - 16.0) / (2.0 * 3.2)).acos();
+//! assert!((near.reach.to.phi - limit).abs() < 1e-9 && (near.reach.from.phi + limit).abs() < 1e-9);
+//! # Ok::<(), kinloop::Error>(())
 //! ```
 #![warn(missing_docs)]
 
@@ -410,11 +423,11 @@ pub use kinloop_macros::mechanism;
 #[doc(no_inline)]
 pub use kinloop_runtime::nalgebra;
 pub use kinloop_runtime::{
-    AtSingular, BlockInfo, BlockNames, ColumnKey, Compiled, CompiledSens, Computed, Configured, DetSigns, Error, Event,
-    EventKind, Extreme, Extremum, ExtremumOf, FlatMotion, Health, Jac, Kernel, Kin, LENGTH_UNIT, Location, Mechanism,
-    Named, NamedSensitivities, NewtonConfig, NewtonStop, Number, Quantity, QuantityKind, Reach, Sens, SensKernel,
-    SensState, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepOf, SweepResult, SweepStop, Table,
-    TraceConfig, Traced, TracedOf, TracedPoint, TracedPointOf, Vec2, deg, to_deg,
+    Assembly, AtSingular, BlockInfo, BlockNames, ColumnKey, Compiled, CompiledSens, Computed, Configured, DetSigns,
+    Error, Event, EventKind, Extreme, Extremum, ExtremumOf, FlatMotion, Health, Jac, Kernel, Kin, LENGTH_UNIT,
+    Location, Mechanism, Named, NamedSensitivities, NewtonConfig, NewtonStop, Number, Quantity, QuantityKind, Reach,
+    Sens, SensKernel, SensState, Sensitivities, SolveReport, Source, Sweep, SweepConfig, SweepOf, SweepResult,
+    SweepStop, Table, TraceConfig, Traced, TracedOf, TracedPoint, TracedPointOf, Vec2, deg, to_deg,
 };
 pub use kinloop_runtime::{analysis, dims, drawing, dynamics, events, metrics, paths, synthesis};
 // A glob of the scan module: it holds `par_scan` whenever the runtime is built with rayon,
