@@ -317,6 +317,27 @@ fn reachable_ranges_equal_the_compiled_ones_and_the_closed_form() {
     assert_eq!((r.from.0[0], r.to.0[0]), (1.2 - 0.1, 1.2 + 0.1));
 }
 
+/// Where a four-bar that cannot be assembled at pi does: the stretch the compiled mechanism
+/// finds with libm's sines in its steps, bit for bit, and the closed form's limit positions;
+/// where it assembles nowhere, `None` on both.
+#[test]
+fn where_it_assembles_equals_the_compiled_mechanism_and_the_closed_form() {
+    let dims = (1.5, 3.0, 1.0, 3.2);
+    let (compiled, mut model) = four_bar(dims.0, dims.1, dims.2, dims.3);
+    assert!(model.solve(&[3.0]).is_err());
+    let r = model.assembly_near(&[3.0], 360).unwrap().expect("it assembles");
+    let l = kinloop::paths::assembles::assembly_near(&Libm(compiled), [3.0], 360).unwrap().expect("it assembles");
+    assert_eq!(
+        (&l.found[..], &l.reach.from[..], &l.reach.to[..]),
+        (&r.found.0[..], &r.reach.from.0[..], &r.reach.to.0[..])
+    );
+    let [lo, hi] = four_bar_limits(dims.0, dims.1, dims.2, dims.3);
+    assert!((r.reach.from.0[0] - lo).abs() < FOLD_INPUT && (r.reach.to.0[0] - hi).abs() < FOLD_INPUT, "{r:?}");
+    assert!(!r.turns_fully());
+    let (_, mut apart) = four_bar(1.0, 1.0, 1.0, 5.0);
+    assert_eq!(apart.assembly_near(&[0.0], 360).unwrap(), None);
+}
+
 // ---------------------------------------------------------------------------------------------
 // States at given inputs
 
