@@ -128,3 +128,19 @@ fn what_it_cannot_search_is_an_error() {
     invalid(assembly_near(&FiveBar::default(), [0.0, 1.0], 360), "2 inputs");
     invalid(assembly_near(&SlideDyad::default(), [0.5], 360), "not an angle");
 }
+
+#[test]
+fn a_start_a_hair_inside_a_limit_position_is_passed_over() {
+    // Solved (its pivot ratio above the point solve's tolerance), but nearer the limit position
+    // than a sweep starts from: the search goes on to the next sample.
+    let m = short_reach(1.0);
+    let lim = four_bar_limit(1.0, 3.2, 4.0);
+    let at = lim - 1e-13;
+    let q = m.position(at, &m.guess(at)).expect("assembles a hair inside").0;
+    let start = m.reachable(at, 0.1, &q, 3);
+    assert!(matches!(start, Err(Error::NearSingular { .. })), "{start:?}");
+    let near = assembly_near(&m, [at], 360).unwrap().expect("it assembles");
+    assert_eq!(near.found, [at - TAU / 360.0]);
+    assert_close!(near.reach.to[0], lim, tol::LOCATED, "{near:?}");
+    assert_close!(near.reach.from[0], -lim, tol::LOCATED, "{near:?}");
+}

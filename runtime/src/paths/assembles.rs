@@ -54,7 +54,9 @@ impl<X> Assembly<X> {
 ///
 /// A sample counts as not assembling where its solve fails with [`Error::NoAssembly`],
 /// [`Error::NoConvergence`] (Newton's method from the declared guess, far from any position)
-/// or [`Error::Singular`] (a limit position met to the rounding, from which no sweep leaves).
+/// or [`Error::Singular`] (a limit position met to the rounding, from which no sweep leaves),
+/// and where a sweep cannot start from the position solved ([`Error::NearSingular`],
+/// [`Error::SingularStart`]: nearer a singular position than a sweep accepts).
 ///
 /// Errors: a mechanism of other than one input, or whose input is not an angle, fewer than 2
 /// or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples, an input so large that
@@ -110,7 +112,7 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
         v
     };
     // Nearest first: `at`, then one spacing each way, two, ... up to half a turn each way.
-    let offsets = (0..=samples / 2).flat_map(|j| if j == 0 { vec![0.0] } else { vec![j as f64, -(j as f64)] });
+    let offsets = std::iter::once(0.0).chain((1..=samples / 2).flat_map(|j| [j as f64, -(j as f64)]));
     for j in offsets {
         let x = input(x0 + j * spacing);
         let guess = m.guess(&x);
@@ -118,10 +120,15 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
             Ok(k) => {
                 let mut q = guess;
                 q.as_mut().copy_from_slice(k.q());
-                // A turn each way: a stretch between two limit positions is shorter than that,
-                // and one that reaches both ends turns fully.
-                let reach = reachable_of(m, x.clone(), input(TAU), q, samples / 2 + 1)?;
-                return Ok(Some(Assembly { found: x, reach }));
+                // A turn each way: a linkage's stretch between two limit positions is shorter
+                // than that, and one that reaches both ends turns fully.
+                match reachable_of(m, x.clone(), input(TAU), q, samples / 2 + 1) {
+                    Ok(reach) => return Ok(Some(Assembly { found: x, reach })),
+                    // Solved, but nearer a singular position than a sweep starts from (within a
+                    // hair of a limit position): the next sample is a start.
+                    Err(Error::SingularStart { .. } | Error::NearSingular { .. }) => {}
+                    Err(e) => return Err(e),
+                }
             }
             Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => {}
             Err(e) => return Err(e),
