@@ -336,6 +336,10 @@ fn where_it_assembles_equals_the_compiled_mechanism_and_the_closed_form() {
     assert!(!r.turns_fully());
     let (_, mut apart) = four_bar(1.0, 1.0, 1.0, 5.0);
     assert_eq!(apart.assembly_near(&[0.0], 360).unwrap(), None);
+    // Inputs not of the model's size: an error, not a panic.
+    for at in [&[][..], &[0.0, 1.0][..]] {
+        assert!(matches!(model.assembly_near(at, 360), Err(kinloop::Error::InvalidArgument(_))), "{at:?}");
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

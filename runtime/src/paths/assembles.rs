@@ -7,7 +7,7 @@ use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, Kernel, X, check_inputs_finite};
+use crate::mechanism::kernel::{Compiled, Kernel, X, check_inputs_finite, check_sizes};
 use std::f64::consts::TAU;
 
 /// The angles of the turn about the input asked for at which [`assembly_near`] tries a point
@@ -76,8 +76,10 @@ where
 
 /// [`assembly_near`] over any [`Kernel`] (a compiled mechanism's, or one whose sizes are known
 /// at run time: `kinloop_model::Model::assembly_near`), with the kernel's configuration
-/// ([`Kernel::solver_config`]).
+/// ([`Kernel::solver_config`]); `at` of the kernel's size (a mismatch is an
+/// `Error::InvalidArgument`).
 pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Option<Assembly<X<K>>>, Error> {
+    check_sizes(m, "assembly_near", &[&at], &[])?;
     let d = m.dims();
     if d.ni() != 1 || m.input_kind(0) != QuantityKind::Angle {
         let has = match d.ni() {
