@@ -65,6 +65,31 @@ fn text(model: &mut Model, at: f64, deg: bool) -> Option<String> {
     ))
 }
 
+/// Writes, after a machine turned by its crank at a constant speed meets a limit position
+/// (`dynamics`), how far that input moves from `start` (radians) on the declared guess's
+/// assembly mode, where it cannot turn fully: the stretch between its limit positions, which
+/// tells a designer that the lengths make a rocker, not a crank. Nothing where the input turns
+/// fully (the position met is a change point), for other mechanisms, or where the search fails.
+pub fn rocks_note(model: &mut Model, start: f64, deg: bool) {
+    if model.input_kinds() != [QuantityKind::Angle] {
+        return;
+    }
+    let Ok(Some(a)) = model.assembly_near(&[start], ASSEMBLY_SAMPLES) else { return };
+    if a.turns_fully() || a.found[0] != start {
+        return;
+    }
+    let input = model.inputs()[0].clone();
+    let shown = |v: f64| if deg { format!("{} deg", Number(degrees(v))) } else { Number(v).to_string() };
+    let end = |v: f64, limit: bool| if limit { shown(v) } else { format!("{} (a turn on)", shown(v)) };
+    eprintln!(
+        "note: from {input} = {} on the assembly mode of the declared guess, {input} moves only between {} and {}: \
+         with these lengths it rocks, and no speed turns it a full turn",
+        shown(start),
+        end(a.reach.from[0], a.reach.from_event.is_some()),
+        end(a.reach.to[0], a.reach.to_event.is_some()),
+    );
+}
+
 /// `v` (radians) as an option takes it: degrees where `deg` is set.
 fn plain(v: f64, deg: bool) -> String {
     Number(if deg { degrees(v) } else { v }).to_string()

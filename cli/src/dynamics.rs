@@ -177,32 +177,20 @@ fn cycle_and_flywheel(
             req.about.unwrap_or_default()
         )));
     }
-    // The runtime refuses a start angle too large for the samples of a turn to be told apart
-    // (or more samples than memory holds), and a body's mass or inertia that the parameters
-    // make negative or not finite: bad arguments, usage errors. What remains is the model's (a
-    // limit position on the turn, a load that is not finite).
-    let cycle = cycle.map_err(|e| {
-        let dynamics = match &e {
-            Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
-            _ => None,
-        };
-        match dynamics {
-            // The runtime names the angle in the radians it computes in: named as given here.
-            Some(DynamicsError::BadValue { what: "start angle", why, .. }) => {
-                let unit = if req.deg { " deg" } else { "" };
-                return usage(format!("{name}: --start {}{unit}: the start angle {why}", Number(req.start)));
+    // The runtime's refusals of the arguments are usage errors; what remains is the model's
+    // (see `failed_cycle`).
+    let cycle = match cycle {
+        Ok(cycle) => cycle,
+        Err(e) => {
+            let locked = locks(&e);
+            let failed = failed_cycle(name, e, model.input_kinds(), req);
+            // Where the lengths make the crank a rocker: its stretch.
+            if locked && failed.0 == exit::SOLVE_FAILED {
+                crate::assembles::rocks_note(model, start, req.deg);
             }
-            Some(DynamicsError::BadValue { what: "samples", .. }) => return usage(format!("{name}: {e}")),
-            Some(DynamicsError::BadMass { .. }) => return usage(bad_mass(name, &e)),
-            _ => {}
+            return Err(failed);
         }
-        let locked = locks(&e);
-        eprintln!("error: {}", named(name, &in_units(e, model.input_kinds(), req.deg)));
-        if locked {
-            eprintln!("{LOCKED}");
-        }
-        Failed(exit::SOLVE_FAILED)
-    })?;
+    };
     let flywheel = cycle.flywheel(req.delta).map_err(|e| {
         // Where the machine has no inertia about its input, its speed there does not follow
         // from its energy: the runtime's singular mass, said in the machine's terms, as
@@ -221,6 +209,34 @@ fn cycle_and_flywheel(
         Failed(exit::SOLVE_FAILED)
     })?;
     Ok((cycle, flywheel))
+}
+
+/// A failed inverse cycle reported: the runtime's refusals of the arguments (a start angle too
+/// large for the samples of a turn to be told apart, more samples than memory holds, a body's
+/// mass or inertia that the parameters make negative or not finite) as usage errors; the
+/// model's (a limit position on the turn, a load that is not finite) as a failed solve, with
+/// the note of a machine that locks. The input's kinds are `kinds`.
+fn failed_cycle(name: &str, e: Error, kinds: &[QuantityKind], req: &Request) -> Failed {
+    let dynamics = match &e {
+        Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
+        _ => None,
+    };
+    match dynamics {
+        // The runtime names the angle in the radians it computes in: named as given here.
+        Some(DynamicsError::BadValue { what: "start angle", why, .. }) => {
+            let unit = if req.deg { " deg" } else { "" };
+            return usage(format!("{name}: --start {}{unit}: the start angle {why}", Number(req.start)));
+        }
+        Some(DynamicsError::BadValue { what: "samples", .. }) => return usage(format!("{name}: {e}")),
+        Some(DynamicsError::BadMass { .. }) => return usage(bad_mass(name, &e)),
+        _ => {}
+    }
+    let locked = locks(&e);
+    eprintln!("error: {}", named(name, &in_units(e, kinds, req.deg)));
+    if locked {
+        eprintln!("{LOCKED}");
+    }
+    Failed(exit::SOLVE_FAILED)
 }
 
 /// Whether `e` is the runtime's shaking force or moment beyond the range of f64.

@@ -446,3 +446,25 @@ fn an_input_named_as_the_command_s_own_column_is_a_usage_error() {
     assert_eq!(rows.len(), 8);
     let _ = std::fs::remove_file(&file);
 }
+
+/// A crank that cannot turn (the engine's crank 2 against its rod 1: the rod's end leaves the
+/// line of the piston's offset 0.01 once `|0.01 - 2 sin phi| > 1`) is told the stretch it rocks
+/// over, between the limit positions `sin phi = (0.01 -+ 1) / 2`, in the units given.
+#[test]
+fn a_crank_that_cannot_turn_is_told_the_stretch_it_rocks_over() {
+    let engine = shipped("engine.kl");
+    let out = kinloop(&["dynamics", &engine, "--params", "r=2,l=1", "--speed", "10", "--deg"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let note = err.lines().find(|l| l.starts_with("note: from phi = 0 deg")).unwrap_or_else(|| panic!("{err}"));
+    let number = |after: &str| -> f64 {
+        let rest = &note[note.find(after).unwrap_or_else(|| panic!("{note}")) + after.len()..];
+        rest[..rest.find(' ').unwrap_or(rest.len())].parse().unwrap_or_else(|e| panic!("{e}: {note}"))
+    };
+    let (lo, hi) = (((0.01f64 - 1.0) / 2.0).asin().to_degrees(), ((0.01f64 + 1.0) / 2.0).asin().to_degrees());
+    assert!((number("between ") - lo).abs() < 1e-7 && (number(" deg and ") - hi).abs() < 1e-7, "{note}");
+    assert!(note.contains("it rocks"), "{note}");
+    // A crank that turns: no such note.
+    let out = kinloop(&["dynamics", &engine, "--speed", "10"]);
+    assert!(out.status.success() && !String::from_utf8_lossy(&out.stderr).contains("rocks"));
+}
