@@ -130,7 +130,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
         Err(DrawError::Sweep(e)) => {
             eprintln!("error: the sweep failed: {}", named(&name, &in_units(e.clone(), &kinds, req.deg)));
-            crate::assembles::note(model, &e, &from, req.deg);
+            crate::assembles::note(model, &e, &from, Some(&to), req.deg);
             return Err(Failed(exit::SOLVE_FAILED));
         }
         Err(e) => return Err(failed(&e)),

@@ -9,21 +9,55 @@ use kinloop_runtime::paths::assembles::ASSEMBLY_SAMPLES;
 use kinloop_runtime::{Error, Number, QuantityKind};
 
 /// Writes the note on standard error where `e` is a failure to assemble at the inputs `at` (in
-/// radians: the error's own location, a sweep's or a trace's start, not a later step) of a
-/// model of one angle input, its numbers in the units written (degrees where `deg` is set);
-/// nothing otherwise, nor where the search itself fails (the error already said what it could).
-pub fn note(model: &mut Model, e: &Error, at: &[f64], deg: bool) {
+/// radians: the error's own location, a sweep's or a trace's start, not a later step), its
+/// numbers in the units written (degrees where `deg` is set): for a model of one angle input,
+/// where it assembles nearest `at`; for any other, where it first assembles along the path to
+/// `to` (a sweep's, a trace's), where one is given. Nothing otherwise, nor where the search
+/// itself fails (the error already said what it could).
+pub fn note(model: &mut Model, e: &Error, at: &[f64], to: Option<&[f64]>, deg: bool) {
     let here = e.location().is_some_and(|l| l.inputs.iter().map(|(_, v)| *v).eq(at.iter().copied()));
-    if !matches!(e, Error::NoAssembly { .. })
-        || !here
-        || at.len() != 1
-        || model.input_kinds().first() != Some(&QuantityKind::Angle)
-    {
+    if !matches!(e, Error::NoAssembly { .. }) || !here {
         return;
     }
-    if let Some(text) = text(model, at[0], deg) {
+    let text = match (model.input_kinds() == [QuantityKind::Angle], to) {
+        (true, _) => text(model, at[0], deg),
+        (false, Some(to)) => along(model, at, to, deg),
+        (false, None) => None,
+    };
+    if let Some(text) = text {
         eprintln!("note: {text}");
     }
+}
+
+/// The note's text for a model that does not assemble at `from` on the path to `to` (radians):
+/// where along it the point solves from the declared guess begin to succeed, and the first of
+/// the samples there, a start for a sweep.
+fn along(model: &mut Model, from: &[f64], to: &[f64], deg: bool) -> Option<String> {
+    let entry = model.assembly_along(from, to, ASSEMBLY_SAMPLES).ok()?;
+    let Some(entry) = entry else {
+        return Some(format!(
+            "from the declared guess, the mechanism assembles at none of {ASSEMBLY_SAMPLES} inputs equally spaced along \
+             the path to --to"
+        ));
+    };
+    let kinds = model.input_kinds().to_vec();
+    let inputs = |x: &[f64]| {
+        let named = model.inputs().iter().zip(x).zip(&kinds);
+        named
+            .map(|((n, v), k)| match deg && *k == QuantityKind::Angle {
+                true => format!("{n} = {} deg", Number(degrees(*v))),
+                false => format!("{n} = {}", Number(*v)),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    Some(format!(
+        "along the path to --to, the mechanism first assembles at {} ({} of the way, from the declared guess); a \
+         sweep can start at {}, the first of {ASSEMBLY_SAMPLES} inputs along the path that solves",
+        inputs(&entry.at.0),
+        Number(entry.fraction),
+        inputs(&entry.sample.0)
+    ))
 }
 
 /// The note's text for the model at the input angle `at` (radians).

@@ -278,7 +278,7 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     // The sweep, done, gives the model back: where it could not start, where it assembles.
     if let Some(e) = stopped {
         let failure = failed(e.clone());
-        crate::assembles::note(model, &e, &[start], req.deg);
+        crate::assembles::note(model, &e, &[start], None, req.deg);
         return Err(failure);
     }
     // Each sample's input in the units given, between the ends as given (`86`, not

@@ -122,7 +122,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
                 return Err(exit::usage(format!("{name}: {e}")));
             }
             let failed = solve_failed(&name, e.clone(), &input_kinds, req.deg);
-            crate::assembles::note(model, &e, &from, req.deg);
+            crate::assembles::note(model, &e, &from, Some(&to), req.deg);
             return Err(failed);
         }
     };

@@ -40,7 +40,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
                 let singular = matches!(e, Some(Error::Singular { .. }));
                 eprintln!("error: {why}");
                 if let Some(e) = &e {
-                    crate::assembles::note(model, e, &x, deg);
+                    crate::assembles::note(model, e, &x, None, deg);
                 }
                 // The positions of a limit position exist where its analogs do not.
                 if singular {

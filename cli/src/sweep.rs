@@ -79,7 +79,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
                 // The sweep lends the model: given back for the note on where it assembles.
                 drop(sweep);
                 let failed = solve_failed(&name, e.clone(), &kinds[..ni], req.deg);
-                crate::assembles::note(model, &e, &from, req.deg);
+                crate::assembles::note(model, &e, &from, Some(&to), req.deg);
                 return Err(failed);
             }
         },

@@ -87,7 +87,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
                      start it beside, on the curve to follow"
                 );
             }
-            crate::assembles::note(model, &e, &from, req.deg);
+            crate::assembles::note(model, &e, &from, Some(&to), req.deg);
             return Err(failed);
         }
     };

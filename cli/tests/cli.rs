@@ -438,6 +438,31 @@ fn a_mechanism_that_cannot_be_assembled_is_told_where_it_does() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("note: from the declared guess, the mechanism assembles at none of 360"), "{err}");
+    // A five-bar (two inputs, base 5): where along the sweep's path its links first reach, the
+    // cranks' pins 4.7 apart (plain geometry, by bisection), in degrees as given.
+    let five_bar = shipped("five_bar.kl");
+    let path = ["--params", "d=5", "--from", "180,0", "--to", "0,180", "--deg", "--samples", "5"];
+    let out = kinloop(&[&["sweep", five_bar.as_str()][..], &path[..]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let gap = |t: f64| {
+        let (t1, t2) = (std::f64::consts::PI * (1.0 - t), std::f64::consts::PI * t);
+        (5.0 + 1.2 * t2.cos() - t1.cos()).hypot(1.2 * t2.sin() - t1.sin()) - 4.7
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if gap(mid) > 0.0 { lo = mid } else { hi = mid }
+    }
+    let note = err.lines().find(|l| l.starts_with("note: along the path to --to")).unwrap_or_else(|| panic!("{err}"));
+    let th1 = |key: &str| -> f64 {
+        let rest = &note[note.find(key).unwrap_or_else(|| panic!("{note}")) + key.len()..];
+        rest[..rest.find(' ').unwrap_or(rest.len())].parse().unwrap_or_else(|e| panic!("{e}: {note}"))
+    };
+    assert!((th1("first assembles at th1 = ") - 180.0 * (1.0 - hi)).abs() < 1e-7, "{note} against {hi}");
+    let out = kinloop(&["sweep", &five_bar, "--params", "d=50", "--from", "180,0", "--to", "0,180", "--deg"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("assembles at none of 360 inputs equally spaced along the path to --to"), "{err}");
     // Where it assembles, or fails otherwise, no note.
     let out = kinloop(&["solve", &four_bar, "--at", "0", "--params", "a=1,b=3,c=2.5,d=1.5"]);
     let err = String::from_utf8_lossy(&out.stderr);

@@ -12,7 +12,7 @@
 use crate::count::Count;
 use crate::model::Model;
 use kinloop_runtime::dims::{Heap, KinBuf};
-use kinloop_runtime::paths::assembles::{Assembly, assembly_near_of};
+use kinloop_runtime::paths::assembles::{Assembly, PathEntry, assembly_along_of, assembly_near_of};
 use kinloop_runtime::paths::modes::assembly_modes_of;
 use kinloop_runtime::paths::reach::reachable_of;
 use kinloop_runtime::paths::scan::fold_sweep_of;
@@ -101,6 +101,21 @@ impl Model {
     pub fn assembly_near(&mut self, at: &[f64], samples: usize) -> Result<Option<Assembly<Heap>>, Error> {
         let k = self.kernel(self.sweep_config)?;
         assembly_near_of(&k, heap(at), samples)
+    }
+
+    /// Where the model first assembles along the straight path from `from` to `to`, any number
+    /// of inputs: point solves from the declared guess at `from` and at `samples` equally spaced
+    /// inputs up to `to`, the entry located between the last that fails and the first that
+    /// solves; the runtime's `assembly_along` over this model (see [`assembly_along_of`]), with
+    /// the model's solver configuration ([`Model::sweep_config`]). `None` where no sample solves.
+    pub fn assembly_along(
+        &mut self,
+        from: &[f64],
+        to: &[f64],
+        samples: usize,
+    ) -> Result<Option<PathEntry<Heap>>, Error> {
+        let k = self.kernel(self.sweep_config)?;
+        assembly_along_of(&k, heap(from), heap(to), samples)
     }
 
     /// The states at the given inputs, in their order, followed along the path through them

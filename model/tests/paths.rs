@@ -339,7 +339,15 @@ fn where_it_assembles_equals_the_compiled_mechanism_and_the_closed_form() {
     // Inputs not of the model's size: an error, not a panic.
     for at in [&[][..], &[0.0, 1.0][..]] {
         assert!(matches!(model.assembly_near(at, 360), Err(kinloop::Error::InvalidArgument(_))), "{at:?}");
+        assert!(matches!(model.assembly_along(at, &[1.0], 9), Err(kinloop::Error::InvalidArgument(_))), "{at:?}");
     }
+    // Along a path from outside into the stretch: the compiled mechanism's entry, bit for bit.
+    let r = model.assembly_along(&[3.0], &[7.0], 50).unwrap().expect("it enters");
+    let l = kinloop::paths::assembles::assembly_along(&Libm(compiled), [3.0], [7.0], 50).unwrap().expect("it enters");
+    assert_eq!((l.fraction, &l.at[..], &l.sample[..]), (r.fraction, &r.at.0[..], &r.sample.0[..]));
+    // Its links reach between the distances 2 and 4 from the crank pin to the rocker's pivot,
+    // on either side of the frame: the first stretch met past pi is the mirror of `[lo, hi]`.
+    assert!((r.at.0[0] - (TAU - hi)).abs() < FOLD_INPUT, "{r:?} against {}", TAU - hi);
 }
 
 // ---------------------------------------------------------------------------------------------

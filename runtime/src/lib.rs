@@ -63,7 +63,7 @@ pub use mechanism::kernel::{Compiled, CompiledSens, Kernel, SensKernel, SensStat
 pub use mechanism::{Mechanism, Sensitivities};
 pub use named::{Named, NamedSensitivities};
 pub use number::Number;
-pub use paths::assembles::Assembly;
+pub use paths::assembles::{Assembly, PathEntry};
 pub use paths::config::{AtSingular, SweepConfig};
 pub use paths::outcome::{SweepResult, SweepStop};
 pub use paths::reach::Reach;

@@ -4,7 +4,7 @@
 //! sum or difference), at several sizes, by closed forms and by Newton's method.
 
 use kinloop::Error;
-use kinloop::paths::assembles::{ASSEMBLY_SAMPLES, assembly_near};
+use kinloop::paths::assembles::{ASSEMBLY_SAMPLES, assembly_along, assembly_near};
 use kinloop_fixtures::{FiveBar, FourBar};
 use std::f64::consts::{PI, TAU};
 
@@ -143,4 +143,60 @@ fn a_start_a_hair_inside_a_limit_position_is_passed_over() {
     assert_eq!(near.found, [at - TAU / 360.0]);
     assert_close!(near.reach.to[0], lim, tol::LOCATED, "{near:?}");
     assert_close!(near.reach.from[0], -lim, tol::LOCATED, "{near:?}");
+}
+
+#[test]
+fn a_path_that_starts_outside_is_told_where_it_enters() {
+    // From 3 to 5 rad the short-reach four-bar enters its stretch at 2 pi - lim (the next
+    // turn's copy of -lim), at every size.
+    let lim = four_bar_limit(1.0, 3.2, 4.0);
+    for scale in [1e-6, 1.0, 1e6] {
+        let m = short_reach(scale);
+        let entry = assembly_along(&m, [3.0], [5.0], 100).unwrap().expect("it enters");
+        assert_close!(entry.at[0], TAU - lim, tol::LOCATED, "{scale}: {entry:?}");
+        assert_close!(entry.fraction, (TAU - lim - 3.0) / 2.0, tol::LOCATED, "{entry:?}");
+        // The first of the samples 0.02 apart past the entry, where a sweep starts.
+        let first = 3.0 + 0.02 * ((TAU - lim - 3.0) / 0.02).ceil();
+        assert_close!(entry.sample[0], first, 1e-15, "{entry:?}");
+        assert!(m.position(entry.sample[0], &m.guess(entry.sample[0])).is_ok());
+    }
+    // Where `from` assembles, it is the entry; where the path stays outside, none.
+    let m = short_reach(1.0);
+    let entry = assembly_along(&m, [0.5], [5.0], 10).unwrap().expect("it assembles");
+    assert_eq!((entry.fraction, entry.at, entry.sample), (0.0, [0.5], [0.5]));
+    assert_eq!(assembly_along(&m, [2.5], [3.8], 100).unwrap(), None);
+}
+
+#[test]
+fn a_five_bars_path_enters_where_its_links_reach() {
+    // The five-bar's base 5 (links 1, 2.5, 2.2, 1.2): at th1 = pi, th2 = 0 the cranks' pins are
+    // 7.2 apart, beyond the coupler links' 4.7; at th1 = 0, th2 = pi, 2.8. Along the path the
+    // pins' distance first falls to 4.7 where the links stretch out.
+    let m = FiveBar { d: 5.0, ..FiveBar::default() };
+    let (from, to) = ([PI, 0.0], [0.0, PI]);
+    let entry = assembly_along(&m, from, to, 50).unwrap().expect("it enters");
+    let gap = |t: f64| {
+        let (t1, t2) = (PI * (1.0 - t), PI * t);
+        let (bx, by) = (m.a * t1.cos(), m.a * t1.sin());
+        let (dx, dy) = (m.d + m.e * t2.cos(), m.e * t2.sin());
+        (dx - bx).hypot(dy - by) - (m.b + m.c)
+    };
+    // The distance's root by bisection in plain geometry: decreasing along the path there.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if gap(mid) > 0.0 { lo = mid } else { hi = mid }
+    }
+    assert_close!(entry.fraction, hi, tol::LOCATED, "{entry:?}");
+    assert_close!(entry.at[0], PI * (1.0 - hi), tol::LOCATED, "{entry:?}");
+    assert_close!(entry.at[1], PI * hi, tol::LOCATED, "{entry:?}");
+}
+
+#[test]
+fn what_a_path_cannot_search_is_an_error() {
+    let m = short_reach(1.0);
+    invalid(assembly_along(&m, [0.0], [1.0], 0), "0 samples");
+    invalid(assembly_along(&m, [1.0], [1.0], 10), "`from` equals `to`");
+    invalid(assembly_along(&m, [0.0], [1.0], kinloop::analysis::MAX_SAMPLES + 1), "at most");
+    assert!(matches!(assembly_along(&m, [0.0], [f64::INFINITY], 10), Err(Error::NonFinite { .. })));
 }

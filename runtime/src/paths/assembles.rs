@@ -1,7 +1,9 @@
-//! Where a one-input mechanism assembles nearest an input angle at which it may not
-//! ([`assembly_near_of`], answering with [`Assembly`]): what to tell a designer whose mechanism
-//! "cannot be assembled" at the input asked for.
+//! Where a mechanism assembles, for a designer whose mechanism "cannot be assembled" at the
+//! input asked for: nearest an input angle of a one-input mechanism ([`assembly_near_of`],
+//! answering with [`Assembly`]), or first along a straight path of any inputs
+//! ([`assembly_along_of`], answering with [`PathEntry`]).
 
+use super::curve::Path;
 use super::reach::{Reach, reachable_of};
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
@@ -135,6 +137,109 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
             Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => {}
             Err(e) => return Err(e),
         }
+    }
+    Ok(None)
+}
+
+/// The most halvings of the stretch between two samples where [`assembly_along`] locates the
+/// path's entry: the fraction's 53 bits and then some.
+const BISECTIONS: usize = 64;
+
+/// Where a mechanism first assembles along the straight path from `from` to `to`
+/// ([`assembly_along`]): the fraction of the path where point solves from the declared guess
+/// begin to succeed, located between two samples, the inputs there, and the first sample that
+/// solves, from which a sweep can start.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct PathEntry<X> {
+    /// The fraction of the path (0 at `from`, 1 at `to`) where the point solves begin to
+    /// succeed: the first solvable input found by bisection between the last sample that fails
+    /// and the first that solves, to the rounding of the fraction. Usually a limit position, a
+    /// hair inside it, from which a sweep may not start (too near a singular position).
+    pub fraction: f64,
+    /// The inputs at `fraction`.
+    pub at: X,
+    /// The first sample along the path that solves (`from` itself where it does), a start for a
+    /// sweep along the rest of the path.
+    pub sample: X,
+}
+
+/// Where a mechanism of any number of inputs first assembles along the straight path from
+/// `from` to `to`: point solves from the declared guess ([`Mechanism::guess_flat`] at each
+/// input) at `from` and then at `samples` equally spaced inputs after it up to `to`; between the
+/// last that fails and the first that solves, the fraction where they begin to succeed by
+/// bisection. `None` where no sample solves (the path stays outside the assembly within the
+/// samples' spacing). A compiled mechanism's [`assembly_along_of`] (through [`Compiled`]).
+///
+/// A sample counts as not assembling where its solve fails with [`Error::NoAssembly`],
+/// [`Error::NoConvergence`] or [`Error::Singular`]; any other error is returned.
+///
+/// Errors: fewer than 1 or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples,
+/// `from` equal to `to` ([`Error::InvalidArgument`]); an input not finite
+/// ([`Error::NonFinite`]).
+pub fn assembly_along<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    from: [f64; NI],
+    to: [f64; NI],
+    samples: usize,
+) -> Result<Option<PathEntry<[f64; NI]>>, Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    assembly_along_of(&Compiled(m), from, to, samples)
+}
+
+/// [`assembly_along`] over any [`Kernel`], with the kernel's configuration
+/// ([`Kernel::solver_config`]); `from` and `to` of the kernel's size (a mismatch is an
+/// `Error::InvalidArgument`).
+pub fn assembly_along_of<K: Kernel>(
+    m: &K,
+    from: X<K>,
+    to: X<K>,
+    samples: usize,
+) -> Result<Option<PathEntry<X<K>>>, Error> {
+    check_sizes(m, "assembly_along", &[&from, &to], &[])?;
+    if samples < 1 {
+        return Err(Error::InvalidArgument("assembly_along: 0 samples asked for: at least `to` is one".into()));
+    }
+    crate::analysis::check_sample_count("samples of `assembly_along`", samples).map_err(Error::InvalidArgument)?;
+    check_inputs_finite(m, &from)?;
+    check_inputs_finite(m, &to)?;
+    if from.as_ref() == to.as_ref() {
+        return Err(Error::InvalidArgument("assembly_along: `from` equals `to`: the path is empty".into()));
+    }
+    let cfg = m.solver_config();
+    m.check_param_angles(&cfg.newton)?;
+    let path = Path::new(from, to);
+    let solves = |tau: f64| -> Result<bool, Error> {
+        let x = path.at_tau(tau);
+        match m.kinematics(&x, &m.guess(&x), &cfg.newton) {
+            Ok(_) => Ok(true),
+            Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => Ok(false),
+            Err(e) => Err(e),
+        }
+    };
+    let mut before = 0.0;
+    for k in 0..=samples {
+        let tau = k as f64 / samples as f64;
+        if !solves(tau)? {
+            before = tau;
+            continue;
+        }
+        // Between the last sample that fails and this one: where the solves begin.
+        let (mut lo, mut hi) = (before, tau);
+        if k > 0 {
+            // Until the fractions or their inputs are neighbours (a start at a limit position
+            // would otherwise halve towards 0 through the subnormals).
+            for _ in 0..BISECTIONS {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi || path.at_tau(lo).as_ref() == path.at_tau(hi).as_ref() {
+                    break;
+                }
+                if solves(mid)? { hi = mid } else { lo = mid }
+            }
+        }
+        return Ok(Some(PathEntry { fraction: hi, at: path.at_tau(hi), sample: path.at_tau(tau) }));
     }
     Ok(None)
 }
