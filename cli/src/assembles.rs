@@ -5,7 +5,9 @@
 
 use crate::solve::degrees;
 use kinloop_model::Model;
+use kinloop_runtime::dims::Heap;
 use kinloop_runtime::paths::assembles::ASSEMBLY_SAMPLES;
+use kinloop_runtime::paths::assembles::Assembly;
 use kinloop_runtime::{Error, Number, QuantityKind};
 
 /// Writes the note on standard error where `e` is a failure to assemble at the inputs `at` (in
@@ -63,7 +65,7 @@ fn along(model: &mut Model, from: &[f64], to: &[f64], deg: bool) -> Option<Strin
 /// The note's text for the model at the input angle `at` (radians).
 fn text(model: &mut Model, at: f64, deg: bool) -> Option<String> {
     let input = model.inputs()[0].clone();
-    let shown = |v: f64| if deg { format!("{} deg", Number(degrees(v))) } else { Number(v).to_string() };
+    let shown = |v: f64| shown(v, deg);
     let near = model.assembly_near(&[at], ASSEMBLY_SAMPLES).ok()?;
     let Some(a) = near else {
         return Some(format!(
@@ -86,16 +88,11 @@ fn text(model: &mut Model, at: f64, deg: bool) -> Option<String> {
             unit = if deg { " --deg" } else { "" },
         ));
     }
-    let end = |v: f64, limit: bool| match limit {
-        true => format!("{} (a limit position)", shown(v)),
-        false => format!("{} (a turn from {}: no limit position within it)", shown(v), shown(found)),
-    };
+    let [from, to] = ends(&a, deg);
     Some(format!(
         "nearest {input} = {}, the mechanism assembles on the assembly mode of the declared guess for {input} from \
-         {} to {}",
+         {from} to {to}",
         shown(at),
-        end(from, a.reach.from_event.is_some()),
-        end(to, a.reach.to_event.is_some()),
     ))
 }
 
@@ -113,15 +110,28 @@ pub fn rocks_note(model: &mut Model, start: f64, deg: bool) {
         return;
     }
     let input = model.inputs()[0].clone();
-    let shown = |v: f64| if deg { format!("{} deg", Number(degrees(v))) } else { Number(v).to_string() };
-    let end = |v: f64, limit: bool| if limit { shown(v) } else { format!("{} (a turn on)", shown(v)) };
+    let [from, to] = ends(&a, deg);
     eprintln!(
-        "note: from {input} = {} on the assembly mode of the declared guess, {input} moves only between {} and {}: \
-         with these lengths it rocks, and no speed turns it a full turn",
-        shown(start),
-        end(a.reach.from[0], a.reach.from_event.is_some()),
-        end(a.reach.to[0], a.reach.to_event.is_some()),
+        "note: from {input} = {} on the assembly mode of the declared guess, {input} moves only between {from} and \
+         {to}: with these lengths it rocks, and no speed turns it a full turn",
+        shown(start, deg),
     );
+}
+
+/// The two ends of the stretch `a` found, in the notes' units (see [`shown`]): each a limit
+/// position, or where none comes within a turn of where the stretch was found, the search's end.
+pub fn ends(a: &Assembly<Heap>, deg: bool) -> [String; 2] {
+    let end = |v: f64, limit: bool| match limit {
+        true => format!("{} (a limit position)", shown(v, deg)),
+        false => format!("{} (a turn on: no limit position within it)", shown(v, deg)),
+    };
+    [end(a.reach.from[0], a.reach.from_event.is_some()), end(a.reach.to[0], a.reach.to_event.is_some())]
+}
+
+/// An input angle `v` (radians) as the notes write it: in degrees, marked so, where `deg` is
+/// set.
+pub fn shown(v: f64, deg: bool) -> String {
+    if deg { format!("{} deg", Number(degrees(v))) } else { Number(v).to_string() }
 }
 
 /// `v` (radians) as an option takes it: degrees where `deg` is set.

@@ -10,7 +10,7 @@ use crate::cam_drawn::FaceLine;
 use crate::exit::usage;
 use crate::numbers::between;
 use crate::output::OutFile;
-use crate::solve::{point, solve_failed};
+use crate::solve::{point, solve_failed, start_failed};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::analysis::cam::{
@@ -277,9 +277,7 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     }
     // The sweep, done, gives the model back: where it could not start, where it assembles.
     if let Some(e) = stopped {
-        let failure = failed(e.clone());
-        crate::assembles::note(model, &e, &[start], None, req.deg);
-        return Err(failure);
+        return Err(start_failed(model, &name, e, (&[start], None), req.deg));
     }
     // Each sample's input in the units given, between the ends as given (`86`, not
     // `86.00000000000001` from the radians), as `kinloop sweep` writes its samples: in degrees

@@ -183,7 +183,7 @@ fn cycle_and_flywheel(
         Ok(cycle) => cycle,
         Err(e) => {
             let locked = locks(&e);
-            let failed = failed_cycle(name, e, model.input_kinds(), req);
+            let failed = failed_cycle(name, e, locked, model.input_kinds(), req);
             // Where the lengths make the crank a rocker: its stretch.
             if locked && failed.0 == exit::SOLVE_FAILED {
                 crate::assembles::rocks_note(model, start, req.deg);
@@ -215,8 +215,8 @@ fn cycle_and_flywheel(
 /// large for the samples of a turn to be told apart, more samples than memory holds, a body's
 /// mass or inertia that the parameters make negative or not finite) as usage errors; the
 /// model's (a limit position on the turn, a load that is not finite) as a failed solve, with
-/// the note of a machine that locks. The input's kinds are `kinds`.
-fn failed_cycle(name: &str, e: Error, kinds: &[QuantityKind], req: &Request) -> Failed {
+/// the note of a machine that locks (`locked`, [`locks`] of `e`). The input's kinds are `kinds`.
+fn failed_cycle(name: &str, e: Error, locked: bool, kinds: &[QuantityKind], req: &Request) -> Failed {
     let dynamics = match &e {
         Error::Dynamics(source) => source.downcast_ref::<DynamicsError>(),
         _ => None,
@@ -231,7 +231,6 @@ fn failed_cycle(name: &str, e: Error, kinds: &[QuantityKind], req: &Request) -> 
         Some(DynamicsError::BadMass { .. }) => return usage(bad_mass(name, &e)),
         _ => {}
     }
-    let locked = locks(&e);
     eprintln!("error: {}", named(name, &in_units(e, kinds, req.deg)));
     if locked {
         eprintln!("{LOCKED}");

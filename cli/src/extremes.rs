@@ -6,7 +6,7 @@
 
 use crate::csv_rows::unsigned_zero;
 use crate::output::unit_suffix;
-use crate::solve::{degrees, in_units, model_inputs, solve_failed};
+use crate::solve::{degrees, in_units, model_inputs, start_failed};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
@@ -121,9 +121,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             if let Error::InvalidArgument(_) = e {
                 return Err(exit::usage(format!("{name}: {e}")));
             }
-            let failed = solve_failed(&name, e.clone(), &input_kinds, req.deg);
-            crate::assembles::note(model, &e, &from, Some(&to), req.deg);
-            return Err(failed);
+            return Err(start_failed(model, &name, e, (&from, Some(&to)), req.deg));
         }
     };
     // Ends a few units in the last place apart: the samples' inputs round to the same numbers

@@ -79,12 +79,8 @@ fn motion(model: &mut Model) -> Option<String> {
         }
         Err(e) => return Some(format!("not determined: {e}")),
     };
-    let (from, to) = (found.reach.from[0], found.reach.to[0]);
-    let end = |v: f64, limit: bool| {
-        if limit { format!("{} (a limit position)", Number(v)) } else { format!("{} (a turn on)", Number(v)) }
-    };
-    let ends =
-        format!("{} and {}", end(from, found.reach.from_event.is_some()), end(to, found.reach.to_event.is_some()));
+    let [from, to] = crate::assembles::ends(&found, false);
+    let ends = format!("{from} and {to}");
     Some(match (found.found[0] == 0.0, found.turns_fully()) {
         (true, true) => format!(
             "{input} turns fully from 0 on the assembly mode of the declared guess (no limit position within a turn \

@@ -222,6 +222,16 @@ pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> 
     Failed(code)
 }
 
+/// [`solve_failed`] of a start at the inputs `at` (a sweep's, a trace's, on the path to `to`
+/// where one is given), with the note of where the mechanism assembles where it does not there
+/// ([`crate::assembles::note`]).
+pub fn start_failed(model: &mut Model, name: &str, e: Error, (at, to): (&[f64], Option<&[f64]>), deg: bool) -> Failed {
+    let kinds = model.input_kinds().to_vec();
+    let failed = solve_failed(name, e.clone(), &kinds, deg);
+    crate::assembles::note(model, &e, at, to, deg);
+    failed
+}
+
 /// The exit code of a failed solve's error `e`: a usage error ([`exit::USAGE`]) where the
 /// arguments stand in the way, not the mechanism (an input too coarse where the range lies: a
 /// range far out, to be reduced by whole turns), [`exit::SOLVE_FAILED`] otherwise.

@@ -5,7 +5,7 @@
 use crate::csv_rows::CsvRows;
 use crate::numbers::between;
 use crate::own_columns::{self, Own};
-use crate::solve::{degrees, factors, model_inputs, parse_inputs, solve_failed, units};
+use crate::solve::{degrees, factors, model_inputs, parse_inputs, solve_failed, start_failed, units};
 use crate::{Failed, exit, output, progress, samples};
 use kinloop_model::Model;
 use kinloop_runtime::dims::KinState;
@@ -78,9 +78,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             None => {
                 // The sweep lends the model: given back for the note on where it assembles.
                 drop(sweep);
-                let failed = solve_failed(&name, e.clone(), &kinds[..ni], req.deg);
-                crate::assembles::note(model, &e, &from, Some(&to), req.deg);
-                return Err(failed);
+                return Err(start_failed(model, &name, e, (&from, Some(&to)), req.deg));
             }
         },
         first => first,

@@ -4,7 +4,7 @@
 //! listed on standard error, or written to `--events`.
 
 use crate::csv_rows::CsvRows;
-use crate::solve::{degrees, model_inputs, solve_failed, units};
+use crate::solve::{degrees, model_inputs, solve_failed, start_failed, units};
 use crate::sweep::{events_columns, range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
@@ -80,14 +80,13 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             }
             // Only the start is solved as a point: the trace passes singular positions after it.
             let singular_start = matches!(e, Error::Singular { .. });
-            let failed = solve_failed(&name, e.clone(), &kinds[..ni], req.deg);
+            let failed = start_failed(model, &name, e, (&from, Some(&to)), req.deg);
             if singular_start {
                 eprintln!(
                     "note: a trace starts at a limit position, but not where two curves cross (a change point): \
                      start it beside, on the curve to follow"
                 );
             }
-            crate::assembles::note(model, &e, &from, Some(&to), req.deg);
             return Err(failed);
         }
     };

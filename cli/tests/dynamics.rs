@@ -462,7 +462,7 @@ fn a_crank_that_cannot_turn_is_told_the_stretch_it_rocks_over() {
         rest[..rest.find(' ').unwrap_or(rest.len())].parse().unwrap_or_else(|e| panic!("{e}: {note}"))
     };
     let (lo, hi) = (((0.01f64 - 1.0) / 2.0).asin().to_degrees(), ((0.01f64 + 1.0) / 2.0).asin().to_degrees());
-    assert!((number("between ") - lo).abs() < 1e-7 && (number(" deg and ") - hi).abs() < 1e-7, "{note}");
+    assert!((number("between ") - lo).abs() < 1e-7 && (number(") and ") - hi).abs() < 1e-7, "{note}");
     assert!(note.contains("it rocks"), "{note}");
     // A crank that turns: no such note.
     let out = kinloop(&["dynamics", &engine, "--speed", "10"]);

@@ -9,7 +9,8 @@ use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
-use crate::mechanism::kernel::{Compiled, Kernel, X, check_inputs_finite, check_sizes};
+use crate::mechanism::kernel::{Compiled, Kernel, Q, X, check_inputs_finite, check_sizes};
+use crate::solvers::newton::NewtonConfig;
 use std::f64::consts::TAU;
 
 /// The angles of the turn about the input asked for at which [`assembly_near`] tries a point
@@ -119,26 +120,33 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
     let offsets = std::iter::once(0.0).chain((1..=samples / 2).flat_map(|j| [j as f64, -(j as f64)]));
     for j in offsets {
         let x = input(x0 + j * spacing);
-        let guess = m.guess(&x);
-        match m.kinematics(&x, &guess, &cfg.newton) {
-            Ok(k) => {
-                let mut q = guess;
-                q.as_mut().copy_from_slice(k.q());
-                // A turn each way: a linkage's stretch between two limit positions is shorter
-                // than that, and one that reaches both ends turns fully.
-                match reachable_of(m, x.clone(), input(TAU), q, samples / 2 + 1) {
-                    Ok(reach) => return Ok(Some(Assembly { found: x, reach })),
-                    // Solved, but nearer a singular position than a sweep starts from (within a
-                    // hair of a limit position): the next sample is a start.
-                    Err(Error::SingularStart { .. } | Error::NearSingular { .. }) => {}
-                    Err(e) => return Err(e),
-                }
-            }
-            Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => {}
+        let Some(q) = solved(m, &x, &cfg.newton)? else { continue };
+        // A turn each way: a linkage's stretch between two limit positions is shorter than that,
+        // and one that reaches both ends turns fully.
+        match reachable_of(m, x.clone(), input(TAU), q, samples / 2 + 1) {
+            Ok(reach) => return Ok(Some(Assembly { found: x, reach })),
+            // Solved, but nearer a singular position than a sweep starts from (within a hair of
+            // a limit position): the next sample is a start.
+            Err(Error::SingularStart { .. } | Error::NearSingular { .. }) => {}
             Err(e) => return Err(e),
         }
     }
     Ok(None)
+}
+
+/// The positions at `x` solved from the declared guess, or `None` where the mechanism does not
+/// assemble there as the searches count it: the solve fails with [`Error::NoAssembly`],
+/// [`Error::NoConvergence`] or [`Error::Singular`]. Any other error is returned.
+fn solved<K: Kernel>(m: &K, x: &X<K>, cfg: &NewtonConfig) -> Result<Option<Q<K>>, Error> {
+    let mut q = m.guess(x);
+    match m.kinematics(x, &q, cfg) {
+        Ok(k) => {
+            q.as_mut().copy_from_slice(k.q());
+            Ok(Some(q))
+        }
+        Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => Ok(None),
+        Err(e) => Err(e),
+    }
 }
 
 /// The most halvings of the stretch between two samples where [`assembly_along`] locates the
@@ -211,14 +219,7 @@ pub fn assembly_along_of<K: Kernel>(
     let cfg = m.solver_config();
     m.check_param_angles(&cfg.newton)?;
     let path = Path::new(from, to);
-    let solves = |tau: f64| -> Result<bool, Error> {
-        let x = path.at_tau(tau);
-        match m.kinematics(&x, &m.guess(&x), &cfg.newton) {
-            Ok(_) => Ok(true),
-            Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => Ok(false),
-            Err(e) => Err(e),
-        }
-    };
+    let solves = |tau: f64| Ok::<_, Error>(solved(m, &path.at_tau(tau), &cfg.newton)?.is_some());
     let mut before = 0.0;
     for k in 0..=samples {
         let tau = k as f64 / samples as f64;
