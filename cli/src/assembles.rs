@@ -47,7 +47,7 @@ fn along(model: &mut Model, from: &[f64], to: &[f64], deg: bool) -> Option<Strin
         let named = model.inputs().iter().zip(x).zip(&kinds);
         named
             .map(|((n, v), k)| match deg && *k == QuantityKind::Angle {
-                true => format!("{n} = {} deg", Number(degrees(*v))),
+                true => format!("{n} = {} deg", Number(note_degrees(*v))),
                 false => format!("{n} = {}", Number(*v)),
             })
             .collect::<Vec<_>>()
@@ -131,10 +131,19 @@ pub fn ends(a: &Assembly<Heap>, deg: bool) -> [String; 2] {
 /// An input angle `v` (radians) as the notes write it: in degrees, marked so, where `deg` is
 /// set.
 pub fn shown(v: f64, deg: bool) -> String {
-    if deg { format!("{} deg", Number(degrees(v))) } else { Number(v).to_string() }
+    if deg { format!("{} deg", Number(note_degrees(v))) } else { Number(v).to_string() }
+}
+
+/// An angle `v` (radians) in degrees to 15 significant digits, as a note writes it: the
+/// inputs the search found are radians (a sample along a path given in degrees, a located
+/// limit position), whose conversion puts rounding into the 16th digit (82 degrees written
+/// `82.00000000000001`), below what a designer types or a sweep's start needs.
+fn note_degrees(v: f64) -> f64 {
+    let d = degrees(v);
+    format!("{d:.14e}").parse().unwrap_or(d)
 }
 
 /// `v` (radians) as an option takes it: degrees where `deg` is set.
 fn plain(v: f64, deg: bool) -> String {
-    Number(if deg { degrees(v) } else { v }).to_string()
+    Number(if deg { note_degrees(v) } else { v }).to_string()
 }

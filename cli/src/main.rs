@@ -358,7 +358,12 @@ enum Command {
         /// The inputs at the end (past `--from` for one input).
         #[arg(long, value_name = "X,...", allow_hyphen_values = true)]
         to: String,
-        /// Samples, equally spaced, both ends included (at least 3, at most 10000000).
+        /// Samples, equally spaced, both ends included (at least 3, at most 10000000). Unlike
+        /// `sweep`, every state is kept until the extremes are located (the search between
+        /// samples starts from them): about 0.7 KB a sample for a four-bar, some 7 GB at the
+        /// most. An extreme is located between samples to the rounding whatever their number
+        /// (a root of the velocity analog where its sign changes between two samples), so more
+        /// samples are needed only where a column turns twice within one spacing.
         #[arg(long, default_value_t = 361, allow_hyphen_values = true, value_parser = count::count)]
         samples: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.

@@ -460,6 +460,12 @@ fn a_mechanism_that_cannot_be_assembled_is_told_where_it_does() {
         rest[..rest.find(' ').unwrap_or(rest.len())].parse().unwrap_or_else(|e| panic!("{e}: {note}"))
     };
     assert!((th1("first assembles at th1 = ") - 180.0 * (1.0 - hi)).abs() < 1e-7, "{note} against {hi}");
+    // The sweep's start, the first of the path's 360 samples past the entry: a whole degree
+    // (the samples are half a degree apart), written as such, not with the rounding of its
+    // conversion from radians in a 16th digit.
+    let start = th1("a sweep can start at th1 = ");
+    assert!(start == (start * 2.0).round() / 2.0 && (start - 180.0 * (1.0 - hi)).abs() <= 0.5, "{note}");
+    assert!(note.contains(&format!("a sweep can start at th1 = {start} deg, th2 = {} deg,", 180.0 - start)), "{note}");
     let out = kinloop(&["sweep", &five_bar, "--params", "d=50", "--from", "180,0", "--to", "0,180", "--deg"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("assembles at none of 360 inputs equally spaced along the path to --to"), "{err}");
