@@ -81,6 +81,11 @@
 //!   a few units in the last place of `x`. A law of the wrapped value should therefore agree
 //!   at `0` and at `period` (a cam's dwell at both ends does, and `clamp` keeps its argument
 //!   in range). A constant `period` must be positive and finite (a compile error otherwise).
+//! * A law through these functions may step (a `floor` of the input, a `clamp` whose width
+//!   is zero: `clamp((phi - phi0) / 0, 0, 1)` jumps from 0 to 1 at `phi0`); a sweep then stops
+//!   at the step, since no mechanism moves through it, and says that a piecewise function may
+//!   step there. A corner (a velocity analog that jumps, as at the ends of a uniform-velocity
+//!   ramp) is swept through and recorded as an event.
 //! * **Angles are in radians** everywhere: in the declaration (`@`, `sin`, `rot`, initial
 //!   guesses), in the inputs passed at run time, in every result (`s.q.phi2`, analogs per radian)
 //!   and in tables and their CSV files (label the columns with [`Table::with_units`](crate::Table::with_units):

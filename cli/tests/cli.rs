@@ -393,6 +393,25 @@ fn stretch(err: &str, unit: &str) -> (f64, f64) {
 /// it: the stretch between the limit positions, here of a four-bar whose coupler and rocker
 /// (2.5 + 1.5) fall short of frame and crank in line (3.2 + 1), by the law of cosines; or that
 /// its loops close nowhere. The same note after `solve`, `sweep`, `trace` and `extremes`.
+/// The dwell cam with a rise of no width: its follower steps by the lift at `phi0` (30
+/// degrees) between two samples, the analogs zero on both sides. The run-time model's sweep
+/// stops there, as the compiled one does, saying that a piecewise function may step, where it
+/// wrote the rocker half a radian away at the next sample as if nothing had happened; with the
+/// declared rise it sweeps on.
+#[test]
+fn a_cam_law_that_steps_stops_the_sweep_there() {
+    let cam = shipped("dwell_cam.kl");
+    let args = ["sweep", &cam, "--from", "1", "--to", "61", "--samples", "7", "--deg"];
+    let out = kinloop(&[&args[..], &["--params", "rise=0"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("the equations hold a piecewise function"), "{err}");
+    assert!(err.contains("at phi = 30.0000000"), "{err}");
+    // The samples before it were written: a header and 1 to 21 degrees.
+    assert_eq!(String::from_utf8_lossy(&out.stdout).lines().count(), 4, "{err}");
+    assert_eq!(csv(&kinloop(&args)).1.len(), 7);
+}
+
 #[test]
 fn a_mechanism_that_cannot_be_assembled_is_told_where_it_does() {
     let four_bar = shipped("four_bar.kl");

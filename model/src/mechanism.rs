@@ -41,6 +41,7 @@ pub(crate) struct Info {
     pub(crate) output_kinds: Vec<QuantityKind>,
     pub(crate) judged: Vec<usize>,
     pub(crate) closed_form_angles: Vec<bool>,
+    pub(crate) piecewise: bool,
     pub(crate) block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
     pub(crate) block_infos: Vec<BlockInfo>,
     pub(crate) config: SweepConfig,
@@ -73,6 +74,7 @@ impl Info {
             output_kinds: model.output_kinds().to_vec(),
             judged: (0..sizes.n).filter(|&u| !model.followers[u]).collect(),
             closed_form_angles: model.closed_form_angles.clone(),
+            piecewise: model.piecewise,
             block_rows_cols: model.block_rows_cols.clone(),
             block_infos: model.block_infos.clone(),
             config,
@@ -470,6 +472,9 @@ macro_rules! model_kernel_body {
         }
         fn closed_form_angle(&self, u: usize) -> bool {
             self.info().closed_form_angles[u]
+        }
+        fn piecewise(&self) -> bool {
+            self.info().piecewise
         }
         fn location(&self, x: &[f64], block: Option<usize>) -> Box<kinloop_runtime::Location> {
             self.info().location(x, block)

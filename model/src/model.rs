@@ -166,6 +166,8 @@ pub struct Model {
     pub(crate) followers: Vec<bool>,
     /// Per unknown: whether a closed form gives it as an angle (`CLOSED_FORM_ANGLES`).
     pub(crate) closed_form_angles: Vec<bool>,
+    /// Whether the positions may jump (the compiled `Mechanism::PIECEWISE`).
+    pub(crate) piecewise: bool,
     /// Per block in solve order: its equations (rows) and unknowns (columns).
     pub(crate) block_rows_cols: Vec<(Vec<usize>, Vec<usize>)>,
     /// Per block in solve order: its description with the model's names (the compiled
@@ -349,9 +351,11 @@ impl Model {
             None => model.params.iter().map(|p| p.value.and_then(|v| g.as_const(v))).collect(),
         };
         let no = plan.outputs.len();
-        // What the emitter writes as `FOLLOWERS` and `CLOSED_FORM_ANGLES`, from the same plan.
+        // What the emitter writes as `FOLLOWERS`, `CLOSED_FORM_ANGLES` and `PIECEWISE`, from the
+        // same plan.
         let followers = kinloop_codegen::plan::followers::followers(&plan.graph, &plan.blocks, n);
         let closed_form_angles = kinloop_codegen::plan::closed_form_angles(&plan);
+        let piecewise = kinloop_codegen::plan::piecewise(&plan);
         let block_rows_cols = plan.blocks.iter().map(|bp| (bp.equations.clone(), bp.unknowns.clone())).collect();
         // Named as the emitter names `BLOCKS`: unknowns by their declared names, equations by
         // theirs (`loop.x`, `loop.y`, an `eq` name).
@@ -422,6 +426,7 @@ impl Model {
             angle_params: (0..k.params.len()).filter(|&p| k.params[p] == Kind::Angle).collect(),
             followers,
             closed_form_angles,
+            piecewise,
             block_rows_cols,
             block_infos,
             statics: statics(g),

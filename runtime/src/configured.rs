@@ -64,6 +64,7 @@ where
     const OUTPUT_KINDS: [QuantityKind; NO] = M::OUTPUT_KINDS;
     const FOLLOWERS: [bool; N] = M::FOLLOWERS;
     const CLOSED_FORM_ANGLES: [bool; N] = M::CLOSED_FORM_ANGLES;
+    const PIECEWISE: bool = M::PIECEWISE;
 
     fn solver_config(&self) -> SweepConfig {
         self.config

@@ -55,6 +55,16 @@ pub trait Mechanism<const N: usize, const NI: usize, const NO: usize> {
     /// radian from its prediction (an anchor a turn away would put it there). `mechanism!`
     /// finds them; by default none is, for hand-written implementations.
     const CLOSED_FORM_ANGLES: [bool; N] = [false; N];
+    /// Whether the positions may jump: the equations hold a piecewise function of the inputs
+    /// or unknowns (`floor`, `wrap`, `min`, `max`, `clamp`, the cut of `atan2` or `angle`),
+    /// whose value can step between two samples with the velocity analogs alike on both sides
+    /// (a law `clamp((t - t0) / w, 0, 1)` with a width `w` of zero). A
+    /// [`Sweep`](crate::Sweep) then judges the distance of every position from its prediction,
+    /// closed-form angles' too, so that a jump stops it; where the equations are smooth, it
+    /// need not judge a closed-form angle's distance (see [`CLOSED_FORM_ANGLES`](Self::CLOSED_FORM_ANGLES)).
+    /// `mechanism!` finds it; by default `false`, for hand-written implementations (whose
+    /// closed-form angles, none by default, are judged anyway).
+    const PIECEWISE: bool = false;
     /// What the declaration says about how the mechanism looks (its loops' chains of points,
     /// links, ground, sliders, plates), in the text format of [`drawing`](crate::drawing),
     /// read by [`Description::of`](crate::drawing::Description::of). `mechanism!` writes it;

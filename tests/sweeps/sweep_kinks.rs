@@ -26,6 +26,77 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// A rocker driven through a rod by a follower that rises by `h` at uniform velocity from
+    /// `a` over `b` (a cam-linkage drive on the law of `UniformRise`): its angles come from the
+    /// dyad's closed form, their velocity analogs jump at the ramp's ends; with a ramp of no
+    /// width (`b = 0`) the follower steps by `h` at `a`.
+    pub struct RampRocker {
+        params h, a, b, l, c, dx, dy, y0;
+        input phi;
+        unknowns gamma = 1.6, psi = -0.25;
+        let s = h * clamp((phi - a) / b, 0, 1);
+        loop rod: (0, y0 + s) + l @ gamma == (dx, dy) + c @ psi;
+    }
+}
+
+/// A [`RampRocker`] of the dwell cam's proportions, `scale` times as large, whose ramp rises
+/// from 0.5 over `b` radians.
+fn ramp_rocker(scale: f64, b: f64) -> RampRocker {
+    RampRocker {
+        h: 20.0 * scale,
+        a: 0.5,
+        b,
+        l: 70.0 * scale,
+        c: 40.0 * scale,
+        dx: -40.0 * scale,
+        dy: 140.0 * scale,
+        y0: 60.0 * scale,
+    }
+}
+
+#[test]
+fn closed_form_angles_past_the_kinks_of_a_ramp_are_on_the_loop() {
+    for scale in [1e-6, 1.0, 1e6] {
+        let m = ramp_rocker(scale, 1.0);
+        let mut sweep = m.sweep(0.0, 2.0, 9, &m.guess(0.0)).unwrap();
+        for st in sweep.by_ref() {
+            let st = st.unwrap();
+            // The loop closes at every sample: the follower's pin where the law puts it.
+            let s = m.h * ((st.input.phi - m.a) / m.b).clamp(0.0, 1.0);
+            let (g, p) = (st.q.gamma, st.q.psi);
+            let gap_x = m.l * g.cos() - m.dx - m.c * p.cos();
+            let gap_y = m.y0 + s + m.l * g.sin() - m.dy - m.c * p.sin();
+            assert!(gap_x.hypot(gap_y) <= 1e-13 * m.l, "{scale} at {}: {gap_x}, {gap_y}", st.input.phi);
+        }
+        let kinks: Vec<f64> = sweep.events().iter().filter(|e| e.kind == EventKind::Kink).map(|e| e.x[0]).collect();
+        assert_eq!(kinks.len(), 2, "{scale}: {:?}", sweep.events());
+        for (at, end) in kinks.iter().zip([0.5, 1.5]) {
+            assert!((at - end).abs() < 1e-9, "{scale}: a kink at {at}, the ramp's end at {end}");
+        }
+    }
+}
+
+/// A law of zero width steps the follower by `h` between two samples, its velocity analogs zero
+/// on both sides: the dyad's closed form gives the angles on either side on the same assembly
+/// mode, and nothing but their distance from the prediction tells. The sweep stops at the step
+/// (it passed it unseen, the angles jumping by half a radian between two samples), and says
+/// what may step.
+#[test]
+fn a_law_that_steps_stops_the_sweep_where_it_steps() {
+    for scale in [1e-6, 1.0, 1e6] {
+        let m = ramp_rocker(scale, 0.0);
+        let items: Vec<_> = m.sweep(0.05, 1.05, 11, &m.guess(0.05)).unwrap().collect();
+        // The samples below the step, 0.05 to 0.45, and then the stop.
+        assert_eq!(items.len(), 6, "{scale}");
+        assert!(items[..5].iter().all(Result::is_ok), "{scale}");
+        let Some(Err(stopped)) = items.last() else { panic!("{scale}: the sweep went on") };
+        let kinloop::Error::Branch { message, at } = &stopped else { panic!("{scale}: {stopped:?}") };
+        assert!(message.contains("piecewise function"), "{message}");
+        assert!((at.inputs[0].1 - m.a).abs() < 1e-9, "{scale}: stopped at {at:?}");
+    }
+}
+
 #[test]
 fn a_kink_between_samples_is_swept_through_and_recorded() {
     // Micrometres and metres: the same kink at the same input.

@@ -115,6 +115,18 @@ fn followers_constant(plan: &Plan) -> TokenStream {
     if follows.iter().any(|&f| f) { quote!(const FOLLOWERS: [bool; #n] = [#(#follows),*];) } else { TokenStream::new() }
 }
 
+/// `PIECEWISE` of the `Mechanism` implementation (see [`crate::plan::piecewise`]), where the
+/// positions may jump (the default says they do not).
+fn piecewise_constant(plan: &Plan) -> TokenStream {
+    if crate::plan::piecewise(plan) {
+        quote!(
+            const PIECEWISE: bool = true;
+        )
+    } else {
+        TokenStream::new()
+    }
+}
+
 /// The inherent named API (forwarders to the runtime's `Named`), `state.motion` and the
 /// conversions that depend only on the type names: one invocation of the runtime's macro.
 fn forwarders(t: &Types, d: &Dims) -> TokenStream {
@@ -144,6 +156,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let lints = kernel_lints();
     let (kinds, angle_params) = kind_constants(model, plan);
     let followers = followers_constant(plan);
+    let piecewise = piecewise_constant(plan);
     let drawing = super::drawing::constant(model);
     let (x, q, g, cfg) = (
         quote!(__x: &[f64; #ni]),
@@ -209,6 +222,7 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             #rt::mechanism_consts!(#name, #n, #ni, #no #angle_params);
             #kinds
             #followers
+            #piecewise
             #drawing
             fn guess_flat(&self, #x) -> [f64; #n] { #guess }
             fn outputs_flat(&self, #x, #q) -> [f64; #no] { #outputs_body }

@@ -25,7 +25,8 @@
 //! What the passes share has a module of its own: the order of input pairs ([`input_pairs`]),
 //! rows from columns ([`columns`]), the parameters' defaults ([`defaults`]); and so has what more
 //! than one back end reads from the finished plan: the closed-form angles
-//! ([`closed_form_angles`](mod@closed_form_angles)).
+//! ([`closed_form_angles`](mod@closed_form_angles)) and whether the positions may jump
+//! ([`piecewise`](mod@piecewise)).
 
 pub mod analogs;
 pub mod block_plan;
@@ -40,6 +41,7 @@ pub mod input_pairs;
 pub mod kinds;
 pub mod magnitudes;
 pub mod outputs;
+pub mod piecewise;
 pub mod positions;
 pub mod seeds;
 pub mod sensitivities;
@@ -54,6 +56,7 @@ pub use columns::rows_from_columns;
 pub use defaults::{model_defaults, param_defaults};
 pub use finished::Plan;
 pub use input_pairs::{pair_index, pairs};
+pub use piecewise::piecewise;
 pub use stages::Stages;
 
 use crate::graph::dag::{Graph, Leaf, NodeId, Op};

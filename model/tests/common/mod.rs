@@ -49,6 +49,7 @@ where
     const OUTPUT_KINDS: [kinloop::QuantityKind; NO] = M::OUTPUT_KINDS;
     const FOLLOWERS: [bool; N] = M::FOLLOWERS;
     const CLOSED_FORM_ANGLES: [bool; N] = M::CLOSED_FORM_ANGLES;
+    const PIECEWISE: bool = M::PIECEWISE;
     const DRAWING: &'static str = M::DRAWING;
     fn param_values(&self) -> Vec<f64> {
         self.0.param_values()

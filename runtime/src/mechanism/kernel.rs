@@ -59,6 +59,13 @@ pub trait Kernel {
     fn judged(&self) -> &[usize];
     /// Whether unknown `u` is an angle given by a closed form ([`Mechanism::CLOSED_FORM_ANGLES`]).
     fn closed_form_angle(&self, u: usize) -> bool;
+    /// Whether the positions may jump ([`Mechanism::PIECEWISE`]): a sweep then judges the
+    /// distance of every position from its prediction, closed-form angles' too. `false` by
+    /// default.
+    #[inline(always)]
+    fn piecewise(&self) -> bool {
+        false
+    }
     /// Where an error happened: the mechanism, the inputs `x` by name, and block `block`.
     fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location>;
     /// The solver configuration used where none is given ([`Mechanism::solver_config`]).
@@ -214,6 +221,10 @@ macro_rules! compiled_kernel_body {
         fn closed_form_angle(&self, u: usize) -> bool {
             M::CLOSED_FORM_ANGLES[u]
         }
+        #[inline(always)]
+        fn piecewise(&self) -> bool {
+            M::PIECEWISE
+        }
         fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
             Location::boxed(M::NAME, &M::INPUTS, x, block.and_then(|b| M::BLOCKS.get(b).map(|info| (b, info.clone()))))
         }
@@ -311,6 +322,10 @@ impl<K: Kernel> Kernel for &K {
     #[inline(always)]
     fn closed_form_angle(&self, u: usize) -> bool {
         (**self).closed_form_angle(u)
+    }
+    #[inline(always)]
+    fn piecewise(&self) -> bool {
+        (**self).piecewise()
     }
     fn location(&self, x: &[f64], block: Option<usize>) -> Box<Location> {
         (**self).location(x, block)

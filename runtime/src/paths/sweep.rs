@@ -1118,12 +1118,21 @@ where
                 singular_pivot: self.cfg.singular_pivot,
                 at: self.location(path.from.as_ref(), Some(weakest)),
             },
-            _ => self.coarse_error(x.as_ref(), Some(weakest)).unwrap_or_else(|| Error::Branch {
-                message: "the sweep cannot stay on its branch: however small the step, the solution jumps or its \
-                          velocity analogs do (the solution curve is not smooth here, or steps land on another \
-                          solution)"
-                    .into(),
-                at: self.location(x.as_ref(), Some(weakest)),
+            _ => self.coarse_error(x.as_ref(), Some(weakest)).unwrap_or_else(|| {
+                let mut message = String::from(
+                    "the sweep cannot stay on its branch: however small the step, the solution jumps or its velocity \
+                     analogs do (the solution curve is not smooth here, or steps land on another solution)",
+                );
+                // Where the equations hold a piecewise function, the likeliest cause is one
+                // that steps here (a law of zero width): said, with where to look.
+                if self.m.piecewise() {
+                    message.push_str(
+                        "; the equations hold a piecewise function (`floor`, `wrap`, `min`, `max`, `clamp`, \
+                         `atan2` or `angle`) of the inputs: one that steps here makes the positions jump (a \
+                         `clamp((t - t0) / w, 0, 1)` whose width `w` is 0)",
+                    );
+                }
+                Error::Branch { message, at: self.location(x.as_ref(), Some(weakest)) }
             }),
         })
     }
@@ -1218,10 +1227,10 @@ pub(crate) fn range_too_long<Q>(metric: &Metric<Q>, len: f64, at: impl FnOnce() 
     over.then(|| Error::RangeTooLong { turns, max_turns: MAX_TURNS, at: at() })
 }
 
-/// Whether a judged unknown of `m` is not a closed-form angle ([`Kernel::closed_form_angle`]):
-/// then the distance of every judged position from its prediction is tested (each in its unit,
-/// the angles' too); otherwise not. A constant after inlining for a compiled
-/// mechanism.
+/// Whether a judged unknown of `m` is not a closed-form angle ([`Kernel::closed_form_angle`]),
+/// or the positions may jump ([`Kernel::piecewise`]): then the distance of every judged
+/// position from its prediction is tested (each in its unit, the angles' too); otherwise not.
+/// A constant after inlining for a compiled mechanism.
 ///
 /// A closed-form angle needs no such test. Its block's equations have two roots a turn (two
 /// intersections, mirror images of each other: a dyad's elbow up and down, a rod on either
@@ -1234,9 +1243,16 @@ pub(crate) fn range_too_long<Q>(metric: &Metric<Q>, len: f64, at: impl FnOnce() 
 /// the slopes' test), a step across a limit position (no root: the solve fails) or beyond the
 /// gap after it (the slope-change bound, `long`). The prediction still picks the branch and
 /// the turn; those tests judge what it picked.
+///
+/// That argument takes the equations to be continuous in the inputs. Through a piecewise
+/// function (`floor`, `wrap`, `clamp` of an infinite argument, the cut of `atan2`) they may
+/// step between two samples, the velocity analogs alike on both sides (a cam law of zero
+/// width, its follower stepping from one dwell to the next): only the distance from the
+/// prediction tells, so there it is tested, and the jump stops the sweep (however small its
+/// steps, the positions land off their prediction) instead of passing unseen.
 #[inline(always)]
 fn positions_judged<K: Kernel>(m: &K) -> bool {
-    m.judged().iter().any(|&u| !m.closed_form_angle(u))
+    m.piecewise() || m.judged().iter().any(|&u| !m.closed_form_angle(u))
 }
 
 /// `v`, a change, distance or slope of unknown `u` as the kernel gives it, measured in `u`'s
