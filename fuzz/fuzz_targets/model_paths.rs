@@ -1,20 +1,30 @@
 //! Fuzz target: any text the run-time reader accepts (`kinloop_model::Model::read`) goes
 //! through what a program or the command line does with a mechanism: a sweep over its inputs'
 //! range, the sampled analysis, the limit positions, the assembly modes, the reach, the traced
-//! curve, the recorded motion and its drawing and, where declared, the sensitivities and the
+//! curve, the recorded motion and its drawing, where the mechanism assembles (nearest an input
+//! angle and first along a path: the searches a designer runs when a point solve fails, so they
+//! meet the inputs at which nothing solves) and, where declared, the sensitivities and the
 //! dynamics. Their errors are answers; none may panic, overflow the stack or hang. Run with
 //! `cargo +nightly fuzz run model_paths fuzz/corpus/model_paths cli/mechanisms -- -timeout=30`
 //! from the repository root (see README.md, "Fuzzing").
 #![no_main]
 
 use kinloop_model::Model;
-use kinloop_runtime::TraceConfig;
 use kinloop_runtime::dynamics::{OdeConfig, RunConfig, SpeedLaw};
+use kinloop_runtime::{QuantityKind, TraceConfig};
 use libfuzzer_sys::fuzz_target;
 
 /// Samples of every sweep: few, so that an input runs in milliseconds, yet steps that the
 /// sweep's own bounds must subdivide.
 const SAMPLES: usize = 9;
+
+/// Samples of the searches for where the mechanism assembles: one each 10 degrees of a turn,
+/// few enough that an input runs in milliseconds.
+const ASSEMBLY_SAMPLES: usize = 36;
+
+/// Inputs about which `assembly_near` searches: the origin, one near half a turn, and one a
+/// million radians out, where the samples of the turn are coarser doubles.
+const NEAR: [f64; 3] = [0.0, 3.0, 1e6];
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(text) = std::str::from_utf8(data) {
@@ -39,6 +49,15 @@ fn exercise(m: &mut Model) {
     // A turn of every input (an angle's; a length's input moves by 2 pi of its unit).
     let from = vec![0.0; ni];
     let to = vec![std::f64::consts::TAU; ni];
+    // Where it assembles: these searches solve from the declared guess at each sample, so they
+    // need no guess of ours, and failing solves are what they go through.
+    if m.input_kinds() == [QuantityKind::Angle] {
+        for at in NEAR {
+            let _ = m.assembly_near(&[at], ASSEMBLY_SAMPLES);
+        }
+    }
+    let _ = m.assembly_along(&from, &to, ASSEMBLY_SAMPLES);
+    let _ = m.assembly_along(&to, &from, ASSEMBLY_SAMPLES);
     let mut guess = vec![0.0; n];
     if m.guess(&from, &mut guess).is_err() {
         return;
