@@ -199,6 +199,10 @@ fn what_a_path_cannot_search_is_an_error() {
     invalid(assembly_along(&m, [1.0], [1.0], 10), "`from` equals `to`");
     invalid(assembly_along(&m, [0.0], [1.0], kinloop::analysis::MAX_SAMPLES + 1), "at most");
     assert!(matches!(assembly_along(&m, [0.0], [f64::INFINITY], 10), Err(Error::NonFinite { .. })));
+    // Finite ends whose difference overflows: no input on the path is finite (the first,
+    // `from + 0 * inf`, is NaN), which was an error about a NaN input nobody gave.
+    invalid(assembly_along(&m, [-1e308], [1e308], 10), "overflows");
+    invalid(assembly_along(&m, [f64::MAX], [-f64::MAX], 1), "overflows");
 }
 
 /// Where a four-bar closes within one turn of its crank, by the law of cosines alone: the

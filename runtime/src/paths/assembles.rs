@@ -183,8 +183,8 @@ pub struct PathEntry<X> {
 /// [`Error::NoConvergence`] or [`Error::Singular`]; any other error is returned.
 ///
 /// Errors: fewer than 1 or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples,
-/// `from` equal to `to` ([`Error::InvalidArgument`]); an input not finite
-/// ([`Error::NonFinite`]).
+/// `from` equal to `to`, ends so far apart that `to - from` overflows
+/// ([`Error::InvalidArgument`]); an input not finite ([`Error::NonFinite`]).
 pub fn assembly_along<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     from: [f64; NI],
@@ -219,6 +219,13 @@ pub fn assembly_along_of<K: Kernel>(
     let cfg = m.solver_config();
     m.check_param_angles(&cfg.newton)?;
     let path = Path::new(from, to);
+    // Both ends finite, `to - from` can still overflow (`1e308 - -1e308`): every input on the
+    // path would be infinite or NaN (`from + 0 * inf`), an error about a NaN nobody gave.
+    if !path.len.is_finite() {
+        return Err(Error::InvalidArgument(
+            "assembly_along: `to - from` overflows (beyond the largest double): give nearer ends of the path".into(),
+        ));
+    }
     let solves = |tau: f64| Ok::<_, Error>(solved(m, &path.at_tau(tau), &cfg.newton)?.is_some());
     let mut before = 0.0;
     for k in 0..=samples {
