@@ -190,7 +190,9 @@ pub enum Error {
     },
     /// A sweep starts at a singular position (its first sample's smallest pivot ratio below
     /// `SweepConfig::singular_pivot`, or below `NewtonConfig::singular_tol`, where the first
-    /// state does not solve: the point solve's [`Error::Singular`]): a limit position (the end
+    /// state does not solve: the point solve's [`Error::Singular`]; or within a hundred times
+    /// `singular_pivot` where no first step however small is accepted: a hair inside a limit
+    /// position, nearer it than the sweep's smallest step): a limit position (the end
     /// of a reachable range, where a sweep that stopped there put it) or a change point, where
     /// the input alone does not say which branch leads on. Start inside the range, or trace the
     /// curve from there (`trace_curve` starts at a limit position).
@@ -457,15 +459,17 @@ fn whole_turns(turns: f64) -> String {
 
 /// Why a sweep's start is singular ([`Error::SingularStart`]): its pivot ratio below the sweep's
 /// `singular_pivot`, or else the solve of its first state found it singular (below
-/// `NewtonConfig::singular_tol`, or reached only linearly), whatever `singular_pivot` is: with
-/// `singular_pivot` 0 the message said a ratio of 0 was "below" 0.
+/// `NewtonConfig::singular_tol`, or reached only linearly), whatever `singular_pivot` is (with
+/// `singular_pivot` 0 the message said a ratio of 0 was "below" 0), or no first step was
+/// accepted from it (a hair inside a limit position).
 fn start_cause(pivot_ratio: f64, singular_pivot: f64) -> String {
     if pivot_ratio < singular_pivot {
         format!("a pivot ratio of {pivot_ratio:.2e}, below `SweepConfig::singular_pivot`, {singular_pivot:e}")
     } else {
         format!(
             "a pivot ratio of {pivot_ratio:.2e}, where the solve of its first state finds the Jacobian singular \
-             (`NewtonConfig::singular_tol`)"
+             (`NewtonConfig::singular_tol`), or no step however small leaves it on one branch (it lies within the \
+             sweep's smallest step of a singular position)"
         )
     }
 }

@@ -397,3 +397,30 @@ fn random_four_bars_assemble_where_the_law_of_cosines_says() {
     assert!(counts.iter().all(|&n| n >= 20), "cases per class {counts:?}, {skipped} skipped");
     assert!(skipped <= 40, "{skipped} skipped");
 }
+
+/// A start a hair inside a limit position where the coupler and rocker stretch out (`4.2e-14`
+/// rad of crank, its pivot ratio `1.1e-6`, just above the `1e-6` a sweep starts from): no step
+/// the sweep takes is small enough to leave it on one branch. Its sweep is a singular start
+/// (it was a branch the sweep "cannot stay on", which `assembly_near` passed on as its error),
+/// and the search passes over it to the next sample, whose stretch ends at the limit.
+#[test]
+fn a_start_nearer_a_limit_than_the_smallest_step_is_passed_over() {
+    for scale in [1e-6, 1.0, 1e6] {
+        let m = FourBar {
+            a: 2.0975839019901823 * scale,
+            b: 0.6815279533920442 * scale,
+            c: 1.177706737236556 * scale,
+            d: 2.7106671235652855 * scale,
+        };
+        let lim = four_bar_limit(m.a, m.d, m.b + m.c);
+        for inside in [4.2e-14, 5.6e-14] {
+            let at = lim - inside;
+            let q = m.position(at, &m.guess(at)).expect("it assembles a hair inside").0;
+            let stopped = m.sweep(at, at - 0.1, 3, &q).unwrap().find_map(Result::err);
+            assert!(matches!(stopped, Some(Error::SingularStart { .. })), "{scale} {inside}: {stopped:?}");
+            let near = assembly_near(&m, [at], ASSEMBLY_SAMPLES).unwrap().expect("it assembles");
+            assert!(near.found[0] < at, "{scale} {inside}: {near:?}");
+            assert_close!(near.reach.to[0], lim, tol::LOCATED, "{scale} {inside}: {near:?}");
+        }
+    }
+}

@@ -116,6 +116,16 @@ pub const MAX_TURNS: f64 = 1e6;
 /// singular position they come from libm, as in a point solve.
 const ROTATE_MIN_PIVOT: f64 = 0.1;
 
+/// How far above `SweepConfig::singular_pivot` the first sample's smallest pivot ratio may be
+/// for a sweep that cannot take its first step, however small, to have started at a singular
+/// position ([`Error::SingularStart`]). Near a limit position the pivot ratio goes as the root
+/// of the distance to it, and the smallest step is `2^-max_halvings` of the step scale (about
+/// `1e-13` rad at a quarter radian): a start a hair inside the limit (a four-bar's `4e-14` rad,
+/// its pivot ratio `1.1e-6`) passes the start's test, but its analogs change over that step by
+/// more than any step's prediction allows. It was reported as a branch the sweep cannot stay
+/// on, which read as a fault of the mechanism, and `assembly_near` did not pass over it.
+const START_PIVOT_MARGIN: f64 = 100.0;
+
 /// Largest distance (radians) of a `Mechanism::CLOSED_FORM_ANGLES` angle from its prediction in
 /// an accepted step. A step this long is far too coarse for the prediction anyway; a limit that
 /// holds where `max_dist` is not computed (every judged unknown a closed-form angle) or is
@@ -1112,12 +1122,15 @@ where
             },
             // From a first sample at a singular position (the end of a reachable range, where a
             // sweep that stopped there put it): no step in the input leaves it on one branch,
-            // its analogs being the rounding's. Said as such, with what to do instead.
-            _ if self.tau == 0.0 && k.health().min_pivot < self.cfg.singular_pivot => Error::SingularStart {
-                pivot_ratio: k.health().min_pivot,
-                singular_pivot: self.cfg.singular_pivot,
-                at: self.location(path.from.as_ref(), Some(weakest)),
-            },
+            // its analogs being the rounding's. Said as such, with what to do instead. So too
+            // from one a hair inside it (see `START_PIVOT_MARGIN`).
+            _ if self.tau == 0.0 && k.health().min_pivot < START_PIVOT_MARGIN * self.cfg.singular_pivot => {
+                Error::SingularStart {
+                    pivot_ratio: k.health().min_pivot,
+                    singular_pivot: self.cfg.singular_pivot,
+                    at: self.location(path.from.as_ref(), Some(weakest)),
+                }
+            }
             _ => self.coarse_error(x.as_ref(), Some(weakest)).unwrap_or_else(|| {
                 let mut message = String::from(
                     "the sweep cannot stay on its branch: however small the step, the solution jumps or its velocity \
