@@ -1141,8 +1141,8 @@ where
                 if self.m.piecewise() {
                     message.push_str(
                         "; the equations hold a piecewise function (`floor`, `wrap`, `min`, `max`, `clamp`, \
-                         `atan2` or `angle`) of the inputs: one that steps here makes the positions jump (a \
-                         `clamp((t - t0) / w, 0, 1)` whose width `w` is 0)",
+                         `atan2` or `angle`) of the inputs or unknowns: one that steps here makes the positions \
+                         jump (a `clamp((t - t0) / w, 0, 1)` whose width `w` is 0)",
                     );
                 }
                 Error::Branch { message, at: self.location(x.as_ref(), Some(weakest)) }
