@@ -183,3 +183,60 @@ fn a_limit_position_is_no_kink() {
         assert!(sweep.events().iter().all(|e| e.kind == EventKind::LimitPosition), "{:?}", sweep.events());
     }
 }
+
+/// A step of random size and direction at a random input, swept at random sample counts (from
+/// two samples to four hundred over three radians, either way) and sizes: the sweep stops at the
+/// step every time, never past it; a steep ramp in its place (a width of a thousandth to a
+/// tenth of a radian) is no step, and is swept through with every sample on the loop.
+#[test]
+fn a_step_of_a_law_stops_every_sweep_at_it_and_a_steep_ramp_none() {
+    let mut rng = crate::support::Xorshift(0x2545_f491_4f6c_dd1d);
+    let (mut stopped, mut ramps) = (0, 0);
+    for case in 0..200 {
+        let scale = [1e-6, 1.0, 1e6][case % 3];
+        let lift = if rng.unit() < 0.5 { -1.0 } else { 1.0 } * 0.05 * 400f64.powf(rng.unit());
+        let a = 0.3 + 2.4 * rng.unit();
+        let samples = 2 + (399.0 * rng.unit().powi(2)) as usize;
+        let (from, to) = if rng.unit() < 0.5 { (0.0, 3.0) } else { (3.0, 0.0) };
+        // A sample on the step itself stands on one side of it or the other: not this test's.
+        let spacing = 3.0 / (samples - 1) as f64;
+        if ((a - from).abs() / spacing).fract().min(1.0 - ((a - from).abs() / spacing).fract()) < 1e-6 {
+            continue;
+        }
+        let ramp = rng.unit() < 0.3;
+        let width = if ramp { 10f64.powf(-3.0 + 2.0 * rng.unit()) } else { 0.0 };
+        let m = RampRocker { h: lift * scale, a, ..ramp_rocker(scale, width) };
+        let what = format!("case {case}: {m:?}, {samples} samples from {from} to {to}");
+        let items: Vec<_> = m.sweep(from, to, samples, &m.guess(from)).unwrap().collect();
+        let on_loop = |st: &RampRockerState| {
+            let s =
+                m.h * if ramp { ((st.input.phi - m.a) / m.b).clamp(0.0, 1.0) } else { f64::from(st.input.phi >= m.a) };
+            let (g, p) = (st.q.gamma, st.q.psi);
+            let gap_x = m.l * g.cos() - m.dx - m.c * p.cos();
+            let gap_y = m.y0 + s + m.l * g.sin() - m.dy - m.c * p.sin();
+            gap_x.hypot(gap_y) <= 1e-12 * m.l
+        };
+        if ramp {
+            assert_eq!(items.len(), samples, "{what}: {:?}", items.last());
+            assert!(items.iter().all(|st| st.as_ref().is_ok_and(on_loop)), "{what}");
+            ramps += 1;
+            continue;
+        }
+        let (last, before) = items.split_last().expect("a first sample");
+        match last {
+            Err(kinloop::Error::Branch { message, at }) => {
+                assert!(message.contains("piecewise function"), "{what}: {message}");
+                assert!((at.inputs[0].1 - a).abs() < 1e-9, "{what}: stopped at {at:?}");
+            }
+            // The search for the step landed on it: `(phi - a) / 0` is `0 / 0` there.
+            Err(kinloop::Error::Domain { at, .. }) => assert_eq!(at.inputs[0].1, a, "{what}"),
+            last => panic!("{what}: {last:?}"),
+        }
+        for st in before {
+            let st = st.as_ref().expect("samples before the step");
+            assert!((st.input.phi < a) == (from < a) && on_loop(st), "{what}: {st:?}");
+        }
+        stopped += 1;
+    }
+    assert!(stopped >= 100 && ramps >= 40, "{stopped} steps, {ramps} ramps");
+}
