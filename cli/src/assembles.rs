@@ -3,6 +3,7 @@
 //! the input range to ask for, or that the lengths close nowhere, without trying inputs one by
 //! one. The error line names the mechanism; the note does not again.
 
+use crate::numbers::significant;
 use crate::solve::degrees;
 use kinloop_model::Model;
 use kinloop_runtime::dims::Heap;
@@ -139,8 +140,7 @@ pub fn shown(v: f64, deg: bool) -> String {
 /// limit position), whose conversion puts rounding into the 16th digit (82 degrees written
 /// `82.00000000000001`), below what a designer types or a sweep's start needs.
 fn note_degrees(v: f64) -> f64 {
-    let d = degrees(v);
-    format!("{d:.14e}").parse().unwrap_or(d)
+    significant(degrees(v), 15)
 }
 
 /// `v` (radians) as an option takes it: degrees where `deg` is set.

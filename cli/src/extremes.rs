@@ -220,13 +220,7 @@ fn too_few_to_search(req: &Request, least: usize, from: &[f64], to: &[f64], kind
 /// velocity analog rounds to zero, which a law leaving the rest smoothly does a little before it
 /// switches (a 3-4-5 law's end at 149.9999995 degrees, not 150).
 fn six_digits(v: f64) -> f64 {
-    if v == 0.0 || !v.is_finite() {
-        return v;
-    }
-    let scale = 10f64.powi(5 - v.abs().log10().floor() as i32);
-    // Beyond the doubles' range (a subnormal's scale overflows): as it is.
-    let rounded = (v * scale).round() / scale;
-    if rounded.is_finite() && scale.is_finite() && scale > 0.0 { rounded } else { v }
+    crate::numbers::significant(v, 6)
 }
 
 /// The stretches at rest a note names one by one before it counts the others (and names the

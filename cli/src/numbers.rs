@@ -89,9 +89,32 @@ fn quotient_as_double(n: i128, d: i128, e: i32) -> f64 {
     text.parse().unwrap_or(f64::NAN)
 }
 
+/// `v` rounded to `digits` significant digits (the decimal rounding of `v`'s exact value, as
+/// `{:e}` writes it), for the numbers of a note: a located value carries the rounding of its
+/// search or of a conversion (82 degrees from radians written `82.00000000000001`, a rest's end
+/// at `149.9999995` degrees for 150), below what a designer reads or types. Zero, the
+/// infinities and NaN as they are.
+pub fn significant(v: f64, digits: usize) -> f64 {
+    format!("{v:.*e}", digits.saturating_sub(1)).parse().unwrap_or(v)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{between, is_zero_text, number};
+    use super::{between, is_zero_text, number, significant};
+
+    /// Rounded decimals, whatever the magnitude, and the values that have none as they are.
+    #[test]
+    fn significant_digits_round_the_decimal() {
+        assert_eq!(significant(82.00000000000001, 15), 82.0);
+        assert_eq!(significant(138.0518454577004, 15), 138.0518454577);
+        assert_eq!(significant(149.9999995, 6), 150.0);
+        assert_eq!(significant(-0.000123456789, 6), -0.000123457);
+        assert_eq!(significant(5e-324, 6), 5e-324);
+        assert_eq!(significant(f64::MAX, 6), 1.79769e308);
+        assert_eq!(significant(-0.0, 6).to_bits(), (-0.0f64).to_bits());
+        assert_eq!(significant(f64::NEG_INFINITY, 6), f64::NEG_INFINITY);
+        assert!(significant(f64::NAN, 6).is_nan());
+    }
 
     /// The samples between decimal ends are the nearest doubles to the decimals they stand
     /// for (each against the double that decimal reads as, an independent parse), the ends the

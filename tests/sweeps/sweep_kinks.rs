@@ -55,6 +55,15 @@ fn ramp_rocker(scale: f64, b: f64) -> RampRocker {
     }
 }
 
+/// How far the loop of `m` is from closing at the state `st` with the follower lifted by `s`:
+/// the distance between the rod's end and the rocker's pin.
+fn loop_gap(m: &RampRocker, st: &RampRockerState, s: f64) -> f64 {
+    let (g, p) = (st.q.gamma, st.q.psi);
+    let gap_x = m.l * g.cos() - m.dx - m.c * p.cos();
+    let gap_y = m.y0 + s + m.l * g.sin() - m.dy - m.c * p.sin();
+    gap_x.hypot(gap_y)
+}
+
 #[test]
 fn closed_form_angles_past_the_kinks_of_a_ramp_are_on_the_loop() {
     for scale in [1e-6, 1.0, 1e6] {
@@ -64,10 +73,8 @@ fn closed_form_angles_past_the_kinks_of_a_ramp_are_on_the_loop() {
             let st = st.unwrap();
             // The loop closes at every sample: the follower's pin where the law puts it.
             let s = m.h * ((st.input.phi - m.a) / m.b).clamp(0.0, 1.0);
-            let (g, p) = (st.q.gamma, st.q.psi);
-            let gap_x = m.l * g.cos() - m.dx - m.c * p.cos();
-            let gap_y = m.y0 + s + m.l * g.sin() - m.dy - m.c * p.sin();
-            assert!(gap_x.hypot(gap_y) <= 1e-13 * m.l, "{scale} at {}: {gap_x}, {gap_y}", st.input.phi);
+            let gap = loop_gap(&m, &st, s);
+            assert!(gap <= 1e-13 * m.l, "{scale} at {}: {gap}", st.input.phi);
         }
         let kinks: Vec<f64> = sweep.events().iter().filter(|e| e.kind == EventKind::Kink).map(|e| e.x[0]).collect();
         assert_eq!(kinks.len(), 2, "{scale}: {:?}", sweep.events());
@@ -211,10 +218,7 @@ fn a_step_of_a_law_stops_every_sweep_at_it_and_a_steep_ramp_none() {
         let on_loop = |st: &RampRockerState| {
             let s =
                 m.h * if ramp { ((st.input.phi - m.a) / m.b).clamp(0.0, 1.0) } else { f64::from(st.input.phi >= m.a) };
-            let (g, p) = (st.q.gamma, st.q.psi);
-            let gap_x = m.l * g.cos() - m.dx - m.c * p.cos();
-            let gap_y = m.y0 + s + m.l * g.sin() - m.dy - m.c * p.sin();
-            gap_x.hypot(gap_y) <= 1e-12 * m.l
+            loop_gap(&m, st, s) <= 1e-12 * m.l
         };
         if ramp {
             assert_eq!(items.len(), samples, "{what}: {:?}", items.last());
