@@ -5,7 +5,8 @@
 //!    crank required to turn fully with a transmission
 //!    angle of at least 30 degrees; the best three designs' coupler curves are drawn with the
 //!    targets (`out/synthesis/coupler_curve.svg`), and the best one moves through them on an
-//!    interactive page (`out/synthesis/best_candidate.html`);
+//!    interactive page (`out/synthesis/best_candidate.html`); the best design's two cognates
+//!    (other pivots and links for the same coupler curve) are listed;
 //! 2. function generation: `y = log10(x)` on `1 <= x <= 2` (the textbook case), a 60 degree
 //!    crank rotation mapped to a 90 degree rocker rotation, five precision points at Chebyshev
 //!    spacing, and the structural error over the whole range;
@@ -23,8 +24,12 @@
 //! feature `rayon`, `Search::par_run` runs the starts on all cores, with the same report.)
 
 use kinloop::analysis::optimize::LevenbergMarquardt;
-use kinloop::synthesis::{Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, Task, chebyshev};
-use kinloop::{Error, Extreme, Sensitivities, to_deg};
+use kinloop::metrics::{FourBarLinks, grashof};
+use kinloop::synthesis::classical::{FourBar, cognates};
+use kinloop::synthesis::{
+    Candidate, Constraints, Design, LocalConfig, PlacementBounds, Problem, Search, Task, chebyshev,
+};
+use kinloop::{Error, Extreme, Sensitivities, Vec2, to_deg};
 use kinloop_examples::out_dir;
 use std::f64::consts::PI;
 use std::f64::consts::TAU;
@@ -158,8 +163,50 @@ fn path_generation() -> Result<(), Box<dyn std::error::Error>> {
         let path = out_dir("synthesis").join("best_candidate.html");
         std::fs::write(&path, html)?;
         println!("   wrote {}", path.display());
+        print_cognates(&best[0])?;
     }
     println!();
+    Ok(())
+}
+
+/// The two cognates of a `CouplerFourBar` design (the Roberts–Chebyshev theorem: other pivots
+/// and links whose coupler point traces the same curve), their fixed pivots placed among the
+/// targets as the design is, with the Grashof class of each (which link of it turns fully).
+fn print_cognates(design: &Candidate) -> Result<(), Box<dyn std::error::Error>> {
+    let [a, b, c, d, e, alpha] = design.params[..] else {
+        return Err("a CouplerFourBar has six parameters".into());
+    };
+    let f = FourBar {
+        input_pivot: Vec2::new(0.0, 0.0),
+        output_pivot: Vec2::new(d, 0.0),
+        ground_angle: 0.0,
+        links: FourBarLinks { ground: d, input: a, coupler: b, output: c },
+        coupler_point: Some((e, alpha)),
+        body_angle: 0.0,
+        inputs: design.inputs.iter().map(|x| x[0]).collect(),
+        couplers: design.positions.iter().map(|q| q[0]).collect(),
+        outputs: design.positions.iter().map(|q| q[1]).collect(),
+    };
+    // The placement maps the declaration's frame onto the targets': `(dx, dy) + s R(angle) p`.
+    let [dx, dy, angle, scale] = design.placement.unwrap_or([0.0, 0.0, 0.0, 1.0]);
+    let (sn, cs) = angle.sin_cos();
+    let placed = |p: Vec2| Vec2::new(dx + scale * (cs * p.x - sn * p.y), dy + scale * (sn * p.x + cs * p.y));
+    println!("   the best design's cognates (the same coupler curve from other pivots):");
+    for (about, g) in ["the crank's pivot", "the rocker's pivot"].iter().zip(cognates(&f)?) {
+        let (p, q, l) = (placed(g.input_pivot), placed(g.output_pivot), g.links);
+        println!(
+            "     about {about}: fixed pivots ({:.4}, {:.4}) and ({:.4}, {:.4}); input {:.4}, coupler {:.4}, \
+             output {:.4} (a {})",
+            p.x,
+            p.y,
+            q.x,
+            q.y,
+            scale * l.input,
+            scale * l.coupler,
+            scale * l.output,
+            grashof(l)?.class
+        );
+    }
     Ok(())
 }
 

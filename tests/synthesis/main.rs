@@ -11,6 +11,7 @@
 mod support;
 
 mod bad_input;
+mod cognates;
 mod defects;
 mod determinism;
 mod evolution;

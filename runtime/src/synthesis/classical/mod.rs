@@ -15,6 +15,9 @@
 //!   lengths, coupler point, link angles at every point), to map onto a declared four-bar's
 //!   parameters and start the general search from
 //!   ([`Search::with_seeds`](crate::synthesis::Search::with_seeds)).
+//! * **Cognates** ([`cognates()`]): the two other four-bars whose coupler points trace the same
+//!   curve as a four-bar's (the Roberts–Chebyshev theorem), for a path found with pivots or a
+//!   transmission that do not suit.
 //!
 //! Every function is pure, takes plain numbers, and reports unusable input as a
 //! [`ClassicalError`] (which converts into [`crate::Error`]). Angles are in radians,
@@ -24,6 +27,7 @@
 
 mod burmester;
 mod chebyshev;
+mod cognates;
 mod compatibility;
 mod dyad;
 mod error;
@@ -37,6 +41,7 @@ pub use burmester::{
     BurmesterConfig, BurmesterCurve, BurmesterPoints, CurvePoint, burmester_points, center_point_curve,
 };
 pub use chebyshev::chebyshev_points;
+pub use cognates::cognates;
 pub use dyad::{Dyad, Pose};
 pub use error::ClassicalError;
 pub use four_bar::FourBar;
