@@ -327,11 +327,23 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
             let Some((input, output)) = spec.split_once(':').map(|(a, b)| (a.trim(), b.trim())) else {
                 return Err(exit::usage(format!("--function `{spec}` is not `input:output`")));
             };
-            if ni != 1 || model.inputs()[0] != input {
+            // A function generator moves one input: a mechanism of several was told its input
+            // `th1` "is not the one input", as if misspelt.
+            if ni != 1 {
                 return Err(exit::usage(format!(
-                    "--function: `{input}` is not the one input of `{}` (its inputs: {})",
+                    "--function generates a function of one input, and `{}` has {ni} ({}): synthesize the path of a \
+                     point at given inputs instead (--path POINT, targets `{}x,y`)",
                     model.name(),
-                    model.inputs().join(", ")
+                    model.inputs().join(", "),
+                    "input,".repeat(ni)
+                )));
+            }
+            if model.inputs()[0] != input {
+                return Err(exit::usage(format!(
+                    "--function: `{input}` is not the input of `{}` (its input: {}); write --function {}:OUTPUT",
+                    model.name(),
+                    model.inputs()[0],
+                    model.inputs()[0]
                 )));
             }
             if width != 2 {

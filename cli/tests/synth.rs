@@ -721,3 +721,33 @@ fn degrees_that_do_not_convert_are_refused_naming_the_value_typed() {
         stderr(&o)
     );
 }
+
+/// `--function` on a mechanism of two inputs says that a function has one input and what to
+/// synthesize instead: it said the first input "is not the one input" of the five-bar, as if
+/// misspelt. On a mechanism of one input, a name that is not its input names the one it is.
+#[test]
+fn a_function_of_a_mechanism_of_several_inputs_says_it_takes_one() {
+    let targets = file("synth_function_two_inputs.csv", "0,1\n1,1.5\n");
+    let stderr = |o: &Output| String::from_utf8_lossy(&o.stderr).to_string();
+    let run = |file: &str, function: &str| {
+        let args = ["synth", file, "--targets", &targets, "--function", function, "--vary", "a=0.8..1.4"];
+        kinloop(&[&args[..], &["--starts", "2", "--jobs", "1"]].concat())
+    };
+    let o = run(&shipped("five_bar.kl"), "th1:spread");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--function generates a function of one input, and `FiveBar` has 2 (th1, th2)")
+            && stderr(&o).contains("--path POINT, targets `input,input,x,y`")
+            && !stderr(&o).contains("is not the"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&shipped("coupler_four_bar.kl"), "gamma:beta");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--function: `gamma` is not the input of `CouplerFourBar` (its input: phi)")
+            && stderr(&o).contains("write --function phi:OUTPUT"),
+        "{}",
+        stderr(&o)
+    );
+}
