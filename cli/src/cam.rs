@@ -435,6 +435,10 @@ fn flat_face(req: &FollowerArgs, follower: &Follower, angle: f64) -> Result<Opti
         return Err(usage("give --roller R (a roller follower) or --flat (a flat-faced one), not both"));
     }
     let shown = |v: f64| Number(v).to_string();
+    // Said as what it is: `--flat nan` was told to tilt the face less than a quarter turn.
+    if !tilt.is_finite() {
+        return Err(usage(format!("--flat {}: the face's tilt must be a finite angle (0 if square)", shown(tilt))));
+    }
     let tilt_rad = tilt / angle;
     match *follower {
         Follower::Translating(_) => {
@@ -444,7 +448,7 @@ fn flat_face(req: &FollowerArgs, follower: &Follower, angle: f64) -> Result<Opti
                      through its point (use --rocker X,Y, or declare the face's point)",
                 ));
             }
-            if tilt_rad.is_nan() || tilt_rad.abs() >= std::f64::consts::FRAC_PI_2 {
+            if tilt_rad.abs() >= std::f64::consts::FRAC_PI_2 {
                 return Err(usage(format!(
                     "--flat {}: a translating follower's face must be tilted less than a quarter turn from square to \
                      its guide",
@@ -455,12 +459,8 @@ fn flat_face(req: &FollowerArgs, follower: &Follower, angle: f64) -> Result<Opti
         }
         Follower::Rocking(pivot) => {
             let offset = req.face_offset.unwrap_or(0.0);
-            if !tilt.is_finite() || !offset.is_finite() {
-                return Err(usage(format!(
-                    "--flat {} and --face-offset {} must be finite numbers",
-                    shown(tilt),
-                    shown(offset)
-                )));
+            if !offset.is_finite() {
+                return Err(usage(format!("--face-offset {} must be a finite number", shown(offset))));
             }
             Ok(Some(FlatFace::Rocking { pivot, offset, tilt: tilt_rad }))
         }

@@ -314,7 +314,10 @@ fn bad_requests_are_usage_errors() {
         ([&base[..], &["--guide", "0,1", "--flat", "90", "--deg"]].concat(), "less than a quarter turn", 2),
         ([&base[..], &["--guide", "0,1", "--flat", "--face-offset", "3"]].concat(), "translating", 2),
         ([&base[..], &["--guide", "0,1", "--face-offset", "3"]].concat(), "give it with --flat", 2),
-        ([&base[..], &["--rocker", "0,0", "--flat", "inf"]].concat(), "must be finite", 2),
+        ([&base[..], &["--rocker", "0,0", "--flat", "inf"]].concat(), "--flat inf: the face's tilt must be", 2),
+        // A tilt that is no number is said to be one, not to be tilted less than a quarter turn.
+        ([&base[..], &["--guide", "0,1", "--flat", "nan"]].concat(), "--flat NaN: the face's tilt must be a finite", 2),
+        ([&base[..], &["--rocker", "0,0", "--flat", "--face-offset", "-inf"]].concat(), "--face-offset -inf must", 2),
         ([&base[..], &["--guide", "0,1", "--flat", "x"]].concat(), "--flat", 2),
         ([&base[..], &["--guide", "0,1", "--start", "1e300"]].concat(), "a turn of the cam from 1e300 is lost", 2),
         // Degrees so many turns out that their radians round by more than a solve's precision
