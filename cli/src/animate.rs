@@ -282,6 +282,7 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     }
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
+    grid_ends(model.inputs(), &from, &to, &counts, req)?;
     let kinds = model.input_kinds().to_vec();
     let grid = model.grid(&from, &to, &counts, &guess).map_err(|e| match e {
         // The counts or ranges refused (no value of an input, equal ends, too many cells, a
@@ -313,6 +314,40 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
         e => failed(&e),
     })?;
     write_out(req.out, &text)
+}
+
+/// The ends and counts of each input of a grid agree: several values between equal ends, or
+/// one value between different ends, are a usage error saying which input and the options
+/// that fix it. The grid's own refusal ("26 values of input `th1` from 0 to the same value")
+/// named neither `--samples` nor what to write, where the 26 are the default count.
+fn grid_ends(inputs: &[String], from: &[f64], to: &[f64], counts: &[usize], req: &Request) -> Result<(), Failed> {
+    // Each input's ends as typed (in degrees with `--deg`), as the options gave them.
+    let typed = |spec: &str, k: usize| spec.split(',').nth(k).map_or(String::new(), |v| v.trim().to_string());
+    let counts_with = |k: usize, c: usize| {
+        let mut v = counts.to_vec();
+        v[k] = c;
+        v.iter().map(usize::to_string).collect::<Vec<_>>().join(",")
+    };
+    for (k, input) in inputs.iter().enumerate() {
+        let (a, b) = (typed(req.from, k), typed(req.to, k));
+        if counts[k] > 1 && from[k] == to[k] {
+            return Err(usage(format!(
+                "--from and --to give input `{input}` the same value ({a}), where the grid takes {} of it: give \
+                 --to another value of `{input}`, or --samples {} for a grid fixed in `{input}`",
+                Count(counts[k], "value"),
+                counts_with(k, 1)
+            )));
+        }
+        if counts[k] == 1 && from[k] != to[k] {
+            return Err(usage(format!(
+                "--samples {} gives input `{input}` one value, and --from and --to a range of it ({a} to {b}): \
+                 give --samples {} for values over the range, or --to {a} in `{input}` for a grid fixed there",
+                req.samples.unwrap_or_default().trim(),
+                counts_with(k, 2)
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The inputs at `--from` and `--to`, and the declared guess at `--from`.

@@ -311,6 +311,41 @@ fn a_grid_over_a_range_no_sweep_follows_is_a_usage_error() {
     );
 }
 
+/// A grid input with equal ends and several values (the default count too), or one value and
+/// different ends, is a usage error naming the input and the options that fix it; the grid
+/// fixed in that input as the message says is drawn.
+#[test]
+fn a_grid_input_whose_ends_and_count_disagree_says_what_to_write() {
+    let file = shipped("five_bar.kl");
+    let path = out("grid_ends.html");
+    let p = path.display().to_string();
+    let head = ["animate", file.as_str(), "--grid", "--out", p.as_str()];
+    let equal_ends = ["--from", "0,0", "--to", "0,1"];
+    fails_without_output(
+        &[&head[..], &equal_ends[..]].concat(),
+        &path,
+        2,
+        "--from and --to give input `th1` the same value (0), where the grid takes 26 values of it: give --to \
+         another value of `th1`, or --samples 1,26 for a grid fixed in `th1`",
+    );
+    fails_without_output(
+        &[&head[..], &["--deg", "--samples", "4,5", "--from", "0,30", "--to", "90,30"]].concat(),
+        &path,
+        2,
+        "the same value (30), where the grid takes 5 values of it: give --to another value of `th2`, or \
+         --samples 4,1 for a grid fixed in `th2`",
+    );
+    fails_without_output(
+        &[&head[..], &["--samples", "1,5", "--from", "0,0", "--to", "1,1"]].concat(),
+        &path,
+        2,
+        "--samples 1,5 gives input `th1` one value, and --from and --to a range of it (0 to 1): give --samples \
+         2,5 for values over the range, or --to 0 in `th1` for a grid fixed there",
+    );
+    ok(&kinloop(&[&head[..], &equal_ends[..], &["--samples", "1,5"]].concat()));
+    assert!(path.exists());
+}
+
 /// A grid that cannot start (the five-bar's base, 5, longer than its other four links, 4 in all,
 /// closes nowhere) says where in degrees with `--deg`, the inputs as given: it said `th1 =
 /// 1.5707963267948966` of the 90 typed, where an animation's sweep says 90.
@@ -419,7 +454,7 @@ fn grid_usage_errors() {
     run(grid(&["--samples", "0"], &p), &path, "at least one value of input `th1`");
     // One value of an input from 0 to 3: the range would be ignored (the page showed `th1` at
     // 0 alone, with success).
-    run(grid(&["--samples", "1,7"], &p), &path, "one value of input `th1` from 0 to 3");
+    run(grid(&["--samples", "1,7"], &p), &path, "--samples 1,7 gives input `th1` one value, and --from and --to a");
     // More cells than the page's poses.
     run(grid(&["--samples", "30"], &p), &path, "--frames");
     // A count that is not one is named with what is wrong with it, not said to be one count too
