@@ -435,7 +435,7 @@ fn aliasing(inputs: &[String], kinds: &[QuantityKind], first: &[f64], last: &[f6
 /// How the event `k` of `n` is listed: the last one of a sweep that stopped is where it
 /// stopped; the others were met and crossed.
 fn event_label(k: usize, n: usize, stopped: bool) -> &'static str {
-    if stopped && k + 1 == n { "the sweep stopped at" } else { "event:" }
+    if stopped && k + 1 == n { "the sweep stopped at a" } else { "event:" }
 }
 
 #[cfg(test)]
@@ -474,7 +474,7 @@ mod tests {
     #[test]
     fn only_the_last_event_of_a_stopped_sweep_is_the_stop() {
         let labels: Vec<&str> = (0..3).map(|k| event_label(k, 3, true)).collect();
-        assert_eq!(labels, ["event:", "event:", "the sweep stopped at"]);
+        assert_eq!(labels, ["event:", "event:", "the sweep stopped at a"]);
         assert!((0..3).all(|k| event_label(k, 3, false) == "event:"));
     }
 }

@@ -165,7 +165,7 @@ fn format_option_and_a_stop_at_a_limit_position() {
     let o = kinloop(&args.into_iter().chain(["--params", params, "--out", &p, "--format", "svg"]).collect::<Vec<_>>());
     ok(&o);
     let stderr = String::from_utf8_lossy(&o.stderr);
-    let at = stderr.split_once("stopped at limit position at phi = ").and_then(|(_, rest)| rest.split_once(" deg"));
+    let at = stderr.split_once("stopped at a limit position at phi = ").and_then(|(_, rest)| rest.split_once(" deg"));
     let at: f64 = at.and_then(|(v, _)| v.parse().ok()).unwrap_or_else(|| panic!("no limit's input: {stderr}"));
     let (a, b, c, d): (f64, f64, f64, f64) = (1.5, 3.0, 1.0, 3.2);
     let limit = ((a * a + d * d - (b + c).powi(2)) / (2.0 * a * d)).acos().to_degrees();
@@ -566,6 +566,6 @@ fn a_stop_far_out_is_named_briefly() {
     ]);
     ok(&o);
     let stderr = String::from_utf8_lossy(&o.stderr);
-    assert!(stderr.contains("the sweep stopped at limit position at s = 2.9999999999999996e200\n"), "{stderr}");
+    assert!(stderr.contains("the sweep stopped at a limit position at s = 2.9999999999999996e200\n"), "{stderr}");
     assert!(!stderr.contains("0000000000"), "{stderr}");
 }
