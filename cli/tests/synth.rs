@@ -751,3 +751,26 @@ fn a_function_of_a_mechanism_of_several_inputs_says_it_takes_one() {
         stderr(&o)
     );
 }
+
+/// Targets near the largest `f64` (two at `±1e308`, both missed by `1e308 sqrt 2`): the RMS
+/// error is that miss, a finite number as the largest error is, where `inf` was written (the
+/// norm of the errors overflowed before its division by the square root of their count).
+#[test]
+fn the_rms_error_of_targets_near_the_largest_double_is_finite() {
+    let four_bar = shipped("coupler_four_bar.kl");
+    let far = file("synth_largest.csv", "1e308,1e308\n-1e308,-1e308\n");
+    let args = ["synth", &four_bar, "--targets", &far, "--path", "p", "--vary", "a=0.8..1.4", "--csv"];
+    let out = kinloop(&[&args[..], &["--starts", "2", "--jobs", "1"]].concat());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let header: Vec<&str> = text.lines().next().expect("a header").split(',').collect();
+    let column = |name: &str| header.iter().position(|h| h.starts_with(name)).expect(name);
+    let (max, rms) = (column("max_error"), column("rms_error"));
+    for row in text.lines().skip(1) {
+        let v: Vec<&str> = row.split(',').collect();
+        let (max, rms): (f64, f64) = (v[max].parse().expect("max"), v[rms].parse().expect("rms"));
+        // Both targets are as far from any design of a four-bar of size 3.
+        assert!(rms.is_finite() && (rms - max).abs() <= 1e-15 * max, "{row}");
+        assert!((max - 1e308 * std::f64::consts::SQRT_2).abs() <= 1e-15 * max, "{row}");
+    }
+}

@@ -312,8 +312,14 @@ impl<K: SensKernel> ProblemOf<K> {
             defects.push(Defect::Miss { target, error: errors[target] });
         }
         // The root mean square as a norm over `sqrt(n)` (the squares of errors near the
-        // largest `f64` overflow).
-        let rms_error = crate::number::norm_of(errors.iter().copied()) / (n as f64).sqrt();
+        // largest `f64` overflow). Where the norm itself overflows (errors of 1e308 at two
+        // targets), each error over `sqrt(n)` first: the mean of finite errors is finite, where
+        // `inf` was written for it.
+        let root_n = (n as f64).sqrt();
+        let mut rms_error = crate::number::norm_of(errors.iter().copied()) / root_n;
+        if rms_error.is_infinite() && max_error.is_finite() {
+            rms_error = crate::number::norm_of(errors.iter().map(|e| e / root_n));
+        }
         let placement = self.placement.map(|_| {
             let at = self.vars.len() + self.free_inputs();
             [z[at], z[at + 1], z[at + 2], z[at + 3]]
