@@ -6,7 +6,7 @@
 use crate::cam::{self, FollowerArgs, Found};
 use crate::cam_drawn;
 use crate::exit::usage;
-use crate::solve::{degrees, in_units, model_inputs, named, parse_inputs};
+use crate::solve::{Notes, degrees, in_units, model_inputs, named, parse_inputs};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -130,6 +130,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
         Err(DrawError::Sweep(e)) => {
             eprintln!("error: the sweep failed: {}", named(&name, &in_units(e.clone(), &kinds, req.deg)));
+            // The notes `sweep` writes under the same error: its advice names the library's
+            // settings (`SweepConfig::singular_pivot`, `trace_curve`), the notes the command
+            // line's options and commands.
+            Notes::of(&e).write();
             crate::assembles::note(model, &e, &from, Some(&to), req.deg);
             return Err(Failed(exit::SOLVE_FAILED));
         }
@@ -295,7 +299,12 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
         }
         // Where it failed, in the units given, as an animation's sweep says it (in radians
         // with --deg it said `th1 = 1.5707963267948966` of the 90 typed).
-        DrawError::Sweep(e) => failed(&format!("the sweep failed: {}", in_units(e, &kinds, req.deg))),
+        DrawError::Sweep(e) => {
+            let notes = Notes::of(&e);
+            let failed = failed(&format!("the sweep failed: {}", in_units(e, &kinds, req.deg)));
+            notes.write();
+            failed
+        }
         e => failed(&e),
     })?;
     let unreached = grid.cells.iter().filter(|c| c.is_none()).count();

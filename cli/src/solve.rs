@@ -191,35 +191,64 @@ fn dynamics_in_units(mut d: DynamicsError, kinds: &[QuantityKind]) -> DynamicsEr
 /// and the exit code its kind calls for ([`exit_code`]).
 pub fn solve_failed(name: &str, e: Error, kinds: &[QuantityKind], deg: bool) -> Failed {
     let code = exit_code(&e);
-    // The sweep's advice names the library's setting; the command line's option sets it.
-    let lower_pivot = matches!(&e, Error::NearSingular { .. });
-    let at_limit = matches!(&e, Error::SweepStopped { kind: EventKind::LimitPosition, .. });
-    let at_crossing = matches!(&e, Error::SweepStopped { kind: EventKind::SingularCrossing, .. });
-    let singular_start = matches!(&e, Error::SingularStart { .. });
+    let notes = Notes::of(&e);
     eprintln!("error: {}", named(name, &in_units(e, kinds, deg)));
-    if lower_pivot {
-        eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");
+    notes.write();
+    Failed(code)
+}
+
+/// The notes written under a failed solve's error: the command line's options and commands
+/// that its advice, written for the library, stands for.
+#[derive(Clone, Copy)]
+pub struct Notes {
+    /// A sweep passes too near a singular position: `--singular-pivot` lowers the ratio.
+    lower_pivot: bool,
+    /// A sweep stopped at a limit position: a trace goes on through it.
+    at_limit: bool,
+    /// A sweep stopped at a crossing: `--through-crossings` or a trace goes on through it.
+    at_crossing: bool,
+    /// A sweep starts at a singular position: a trace starts at a limit position.
+    singular_start: bool,
+}
+
+impl Notes {
+    /// The notes of the error `e`.
+    pub fn of(e: &Error) -> Notes {
+        Notes {
+            // The sweep's advice names the library's setting; the command line's option sets it.
+            lower_pivot: matches!(e, Error::NearSingular { .. }),
+            at_limit: matches!(e, Error::SweepStopped { kind: EventKind::LimitPosition, .. }),
+            at_crossing: matches!(e, Error::SweepStopped { kind: EventKind::SingularCrossing, .. }),
+            singular_start: matches!(e, Error::SingularStart { .. }),
+        }
     }
-    if singular_start {
-        eprintln!("note: `kinloop trace` traces the curve from a limit position (not from a change point)");
-    }
-    // The input turns back there: no sweep goes on, the curve does.
-    if at_limit {
-        eprintln!(
-            "note: the input cannot go on past a limit position; `kinloop trace` follows the curve through it (the \
+
+    /// Writes the notes on standard error.
+    pub fn write(self) {
+        let Notes { lower_pivot, at_limit, at_crossing, singular_start } = self;
+        if lower_pivot {
+            eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");
+        }
+        if singular_start {
+            eprintln!("note: `kinloop trace` traces the curve from a limit position (not from a change point)");
+        }
+        // The input turns back there: no sweep goes on, the curve does.
+        if at_limit {
+            eprintln!(
+                "note: the input cannot go on past a limit position; `kinloop trace` follows the curve through it (the \
              input turning back), and can start from it"
-        );
-    }
-    // Two branches cross there: a sweep cannot tell which one the mechanism takes, a trace
-    // keeps to the curve it is on.
-    if at_crossing {
-        eprintln!(
-            "note: two branches of the motion cross there (a change point), and the input alone does not say \
+            );
+        }
+        // Two branches cross there: a sweep cannot tell which one the mechanism takes, a trace
+        // keeps to the curve it is on.
+        if at_crossing {
+            eprintln!(
+                "note: two branches of the motion cross there (a change point), and the input alone does not say \
              which one the mechanism follows on; `--through-crossings` goes on along the smooth continuation, \
              and `kinloop trace` keeps to the curve it is on through it"
-        );
+            );
+        }
     }
-    Failed(code)
 }
 
 /// [`solve_failed`] of a start at the inputs `at` (a sweep's, a trace's, on the path to `to`

@@ -569,3 +569,27 @@ fn a_stop_far_out_is_named_briefly() {
     assert!(stderr.contains("the sweep stopped at a limit position at s = 2.9999999999999996e200\n"), "{stderr}");
     assert!(!stderr.contains("0000000000"), "{stderr}");
 }
+
+/// A sweep that cannot start (the rhombus four-bar folded at 0, a change point) is the error
+/// `sweep` writes with the notes `sweep` writes: its advice names the library's `trace_curve`,
+/// the note `kinloop trace`, which animate left out.
+#[test]
+fn a_sweep_that_cannot_start_has_the_notes_of_sweep() {
+    let path = out("singular_start.svg");
+    let p = path.display().to_string();
+    let common = ["--params", "a=1,b=1,c=1,d=1", "--from", "0", "--to", "1"];
+    let file = shipped("four_bar.kl");
+    let sweep = kinloop(&[&["sweep", file.as_str()][..], &common[..]].concat());
+    let note = |o: &Output| {
+        let stderr = String::from_utf8_lossy(&o.stderr).to_string();
+        stderr.lines().filter(|l| l.starts_with("note: ")).map(str::to_string).collect::<Vec<_>>()
+    };
+    assert_eq!(sweep.status.code(), Some(1));
+    assert!(note(&sweep).iter().any(|n| n.contains("`kinloop trace` traces the curve")), "{:?}", note(&sweep));
+    let animate = kinloop(&[&["animate", file.as_str(), "--out", p.as_str()][..], &common[..]].concat());
+    let stderr = String::from_utf8_lossy(&animate.stderr);
+    assert_eq!(animate.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("error: the sweep failed: the sweep starts at a singular position"), "{stderr}");
+    assert_eq!(note(&animate), note(&sweep), "{stderr}");
+    assert!(!path.exists());
+}
