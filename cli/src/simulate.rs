@@ -17,6 +17,7 @@
 
 use crate::dynamics::{LOCKED, bad_mass, check_crank, locks};
 use crate::exit::usage;
+use crate::numbers::between;
 use crate::solve::{degrees, in_units};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -99,9 +100,11 @@ fn simulate_table(model: &mut Model, req: &Request, angle: f64) -> Result<Table,
     let input = model.inputs()[0].clone();
     let last = req.samples - 1;
     // The ends exactly: the start and the time reached (`--time`: the run is never ended
-    // early, and its last step ends there).
+    // early, and its last step ends there). The times between as the decimals they stand for
+    // (`between`, as `sweep` writes its inputs): `--time 0.3 --samples 4` wrote the second
+    // time `0.09999999999999999`, the product `0.3 * 1 / 3` rounded twice.
     let time = req.time;
-    let at = move |k: usize| if k == last { time } else { time * k as f64 / last as f64 };
+    let at = move |k: usize| if k == last { time } else { between(0.0, time, k, last) };
     let mut rows = Rows::new(req.samples, at, input, req.deg, angle);
     let torque = req.torque;
     let (_, end) = model
@@ -339,7 +342,7 @@ mod tests {
         let mut t = Table::new(vec![COLUMNS[0].into(), input.into(), COLUMNS[1].into()]);
         let last = req.samples - 1;
         for k in 0..req.samples {
-            let time = if k == last { run.t_end } else { run.t_end * k as f64 / last as f64 };
+            let time = if k == last { run.t_end } else { between(0.0, run.t_end, k, last) };
             let [phi, omega] = run.at(time);
             t.push(vec![time, phi * angle, omega * angle]);
         }

@@ -183,11 +183,33 @@ fn simulate_s_streamed_table_is_the_recorded_trajectory_s() {
         assert_eq!(rows.len(), samples);
         let last = samples - 1;
         for (k, r) in rows.iter().enumerate() {
-            let time = if k == last { run.t_end } else { run.t_end * k as f64 / last as f64 };
+            // The time written is the decimal `0.2 k / last` (its nearest double), the product
+            // to its rounding.
+            let (time, product) = (r[0], if k == last { run.t_end } else { run.t_end * k as f64 / last as f64 });
+            assert!((time - product).abs() <= 2.0 * f64::EPSILON * product, "row {k}: {time} vs {product}");
             let [phi, omega] = run.at(time);
             let want = [time, phi * angle, omega * angle];
             assert_eq!(r.iter().map(|v| v.to_bits()).collect::<Vec<_>>(), want.map(f64::to_bits), "row {k}: {r:?}");
         }
+    }
+}
+
+/// The times between the start and `--time` are the decimals they stand for, as `sweep` writes
+/// its inputs: `--time 0.3 --samples 4` wrote `0.09999999999999999` and `0.19999999999999998`
+/// (the products `0.3 k / 3`), and `--time 0.7 --samples 8` `0.30000000000000004`.
+#[test]
+fn the_times_between_are_the_decimals() {
+    let engine = shipped("engine.kl");
+    for (time, samples, want) in [
+        ("0.3", "4", &["0", "0.1", "0.2", "0.3"][..]),
+        ("0.7", "8", &["0", "0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7"][..]),
+    ] {
+        let args = ["simulate", &engine, "--speed", "150", "--time", time, "--samples", samples];
+        let out = kinloop(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let text = String::from_utf8_lossy(&out.stdout);
+        let times: Vec<&str> = text.lines().skip(1).map(|l| l.split(',').next().unwrap_or_default()).collect();
+        assert_eq!(times, want, "--time {time} --samples {samples}");
     }
 }
 
