@@ -278,8 +278,14 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     // The product saturates: a count too large for usize is more cells than any page.
     let cells = counts.iter().fold(1usize, |p, &c| p.saturating_mul(c));
     if cells > max {
+        // Without --samples the grid is the default's least, two values per input: fewer
+        // --samples, as said where they are given, would be a grid of no range.
+        let advice = match req.samples {
+            Some(_) => "fewer --samples, or more --frames".to_string(),
+            None => format!("give --frames {cells} or more (the default grid has two values of each input at least)"),
+        };
         return Err(usage(format!(
-            "a grid of {} is more than the page's {}: fewer --samples, or more --frames",
+            "a grid of {} is more than the page's {}: {advice}",
             Count(cells, "cell"),
             Count(max, "pose")
         )));

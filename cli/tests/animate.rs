@@ -425,6 +425,15 @@ fn too_many_cells_is_refused_before_solving() {
     };
     fails_without_output(&args("5"), &path, 1, "FiveBar");
     fails_without_output(&args("30"), &path, 2, "a grid of 900 cells is more than the page's 721 poses");
+    // Without --samples the default grid is the least, two values per input: the advice is
+    // the frames it needs, not fewer --samples (which would be a grid of no range).
+    let frames = ["animate", five.as_str(), "--grid", "--from", "0,0.4", "--to", "3,3", "--frames", "3", "--out", &p];
+    fails_without_output(
+        &frames,
+        &path,
+        2,
+        "a grid of 4 cells is more than the page's 3 poses: give --frames 4 or more (the default grid has two values",
+    );
 }
 
 /// `--grid` is for a mechanism of several inputs, drawn as a page; its counts are one per input
