@@ -10,7 +10,7 @@ use crate::cam_drawn::FaceLine;
 use crate::exit::usage;
 use crate::numbers::between;
 use crate::output::OutFile;
-use crate::solve::{point, solve_failed, start_failed};
+use crate::solve::{point, radians_of, solve_failed, start_failed};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::analysis::cam::{
@@ -226,7 +226,7 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
     };
     let pivot = point(fa.pivot.as_deref().unwrap_or("0,0"), "--pivot")?;
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
-    let face = flat_face(fa, &follower, angle)?;
+    let face = flat_face(fa, &follower, req.deg)?;
     let start = req.start / angle;
     let kinds = model.input_kinds().to_vec();
     let failed = |e: Error| solve_failed(&name, e, &kinds, req.deg);
@@ -422,9 +422,9 @@ fn one_angle_input(model: &Model) -> Result<(), Failed> {
     Ok(())
 }
 
-/// The flat face asked for with `--flat` (and `--face-offset`), `None` for a roller; `angle`
-/// converts the given angle to radians by division.
-fn flat_face(req: &FollowerArgs, follower: &Follower, angle: f64) -> Result<Option<FlatFace>, Failed> {
+/// The flat face asked for with `--flat` (and `--face-offset`), `None` for a roller; its tilt
+/// given in degrees with `deg`.
+fn flat_face(req: &FollowerArgs, follower: &Follower, deg: bool) -> Result<Option<FlatFace>, Failed> {
     let Some(tilt) = req.flat else {
         return match req.face_offset {
             Some(_) => Err(usage("--face-offset places a flat face: give it with --flat")),
@@ -439,7 +439,10 @@ fn flat_face(req: &FollowerArgs, follower: &Follower, angle: f64) -> Result<Opti
     if !tilt.is_finite() {
         return Err(usage(format!("--flat {}: the face's tilt must be a finite angle (0 if square)", shown(tilt))));
     }
-    let tilt_rad = tilt / angle;
+    // Degrees so many turns out that their radians round by more than a solve's precision are
+    // refused as `--start` refuses them: `--flat 1e300 --deg` tilted a rocking face by the
+    // rounding's angle without a word.
+    let tilt_rad = if deg { radians_of(tilt, "--flat")? } else { tilt };
     match *follower {
         Follower::Translating(_) => {
             if req.face_offset.is_some() {

@@ -319,6 +319,13 @@ fn bad_requests_are_usage_errors() {
         ([&base[..], &["--guide", "0,1", "--flat", "nan"]].concat(), "--flat NaN: the face's tilt must be a finite", 2),
         ([&base[..], &["--rocker", "0,0", "--flat", "--face-offset", "-inf"]].concat(), "--face-offset -inf must", 2),
         ([&base[..], &["--guide", "0,1", "--flat", "x"]].concat(), "--flat", 2),
+        // A rocking face's tilt in degrees so many turns out that their radians are rounding
+        // (the face was tilted by it without a word), as `--start` is refused.
+        (
+            [&base[..], &["--rocker", "0,0", "--flat", "1e300", "--deg"]].concat(),
+            "--flat: 1e300 degrees are too many turns out to convert to radians",
+            2,
+        ),
         ([&base[..], &["--guide", "0,1", "--start", "1e300"]].concat(), "a turn of the cam from 1e300 is lost", 2),
         // Degrees so many turns out that their radians round by more than a solve's precision
         // are refused as `sweep --deg` and `dynamics --deg` refuse them (the cam was found at the
