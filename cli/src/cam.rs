@@ -673,10 +673,18 @@ pub(crate) fn point_columns(model: &Model, name: &str, option: &str) -> Result<(
         (Some(x), Some(y)) => Ok((x, y)),
         _ => {
             let points: Vec<&str> = outputs.iter().filter_map(|o| o.strip_suffix(".x")).collect();
+            // A mechanism of no point: "its points: none" said nothing of how to have one.
+            if points.is_empty() {
+                return Err(usage(format!(
+                    "{option} {name}: {} declares no point: declare it in the declaration, `point {name} = ...;` \
+                     (a sum of the loops' vectors, e.g. `r @ phi`)",
+                    model.name()
+                )));
+            }
             Err(usage(format!(
                 "{option} {name}: {} has no point of that name (its points: {})",
                 model.name(),
-                if points.is_empty() { "none".to_string() } else { points.join(", ") }
+                points.join(", ")
             )))
         }
     }

@@ -296,7 +296,7 @@ fn a_rocking_flat_face_on_the_eccentric_disc() {
 
 #[test]
 fn bad_requests_are_usage_errors() {
-    let (cam, five_bar) = (shipped("dwell_cam.kl"), shipped("five_bar.kl"));
+    let (cam, five_bar, slider) = (shipped("dwell_cam.kl"), shipped("five_bar.kl"), shipped("slider_crank.kl"));
     // A folder where a file is: the plot cannot be created.
     let plot = std::path::Path::new(&cam).join("cam.svg");
     // A folder that does not exist is not created (as for `animate --out`).
@@ -338,6 +338,12 @@ fn bad_requests_are_usage_errors() {
             2,
         ),
         (vec!["cam", cam.as_str(), "--point", "nope", "--guide", "0,1"], "its points: follower, rocker_pin", 2),
+        // A mechanism of no point says to declare one (it said "its points: none").
+        (
+            vec!["cam", slider.as_str(), "--params", "r=1,l=3,e=0", "--point", "x", "--guide", "1,0"],
+            "--point x: SliderCrank declares no point: declare it in the declaration, `point x = ...;`",
+            2,
+        ),
         (vec!["cam", five_bar.as_str(), "--point", "p", "--guide", "0,1"], "must have one input, an angle", 2),
         ([&base[..], &["--guide", "0,1", "--plot", plot.to_str().unwrap()]].concat(), "cannot create the plot", 73),
         ([&base[..], &["--guide", "0,1", "--plot", missing.to_str().unwrap()]].concat(), "cannot create the plot", 73),
