@@ -10,7 +10,7 @@
 //! kinloop simulate engine.kl --speed 150 --torque 2.5 --flywheel 0.05 --time 0.5
 //! kinloop extremes slider_crank.kl --params r=1,l=3,e=0.4 --from 0 --to 360 --deg --table   # min and max
 //! kinloop trace four_bar.kl --params a=3,b=2,c=2.5,d=4 --from 0 --to 180 --deg   # through limit positions
-//! kinloop cam dwell_cam.kl --point follower --guide 0,1 --roller 10 --plot cam.svg
+//! kinloop cam dwell_cam.kl --point follower --guide 0,1 --roller 10 --plot cam_profile.svg
 //! kinloop cam dwell_cam.kl --point follower --guide 0,1 --flat --deg   # a flat-faced follower
 //! kinloop animate rhombic_drive.kl --from 0 --to 360 --samples 91 --deg --out rhombic.svg
 //! kinloop animate dwell_cam.kl --from 0 --to 360 --deg --cam follower --guide 0,1 --roller 10 --out cam.svg
