@@ -115,10 +115,11 @@
 //!   `torque name on angle = scalar;` are loads: expressions of parameters,
 //!   inputs and unknowns, evaluated by generated straight-line code; `gravity (0, -g);` sets
 //!   gravity. The macro then generates `m.mass_model()`, the runtime's
-//!   [`dynamics::MassModel`](crate::dynamics::MassModel) for the reduced inertia, inverse dynamics, shaking forces, flywheel
-//!   and simulation. A negative literal mass or inertia, a mass that changes with the state,
-//!   `turns` or `on` a parameter or a length unknown, an `inertia` without `turns`, and a point
-//!   with no analogs of its own are compile errors; negative or non-finite values given at run time are typed errors.
+//!   [`dynamics::MassModel`](crate::dynamics::MassModel) for the reduced inertia, inverse
+//!   dynamics, shaking forces, flywheel and simulation. A negative literal mass or inertia, a
+//!   mass that changes with the state, `turns` or `on` a parameter or a length unknown, an
+//!   `inertia` without `turns`, and a point with no analogs of its own are compile errors;
+//!   negative or non-finite values given at run time are typed errors.
 //!
 //! ```
 //! kinloop::mechanism! {
@@ -165,16 +166,17 @@
 //!   default value, or when there are no parameters), with `param_values()` and
 //!   `from_param_values([...])` in declaration order;
 //! * `NameInputs<T>`, `NameUnknowns<T>`, `NameOutputs<T>`: named fields (points are
-//!   [`Vec2`](crate::Vec2)), convertible from and to arrays (and nalgebra vectors for the unknowns); with
-//!   one input, a plain `f64` converts to `NameInputs`, so `m.solve(0.3)` works;
+//!   [`Vec2`](crate::Vec2)), convertible from and to arrays (and nalgebra vectors for the
+//!   unknowns); with one input, a plain `f64` converts to `NameInputs`, so `m.solve(0.3)` works;
 //! * `NameState`: the inputs `input`, positions `q`, velocity analogs `dq`, acceleration analogs
-//!   `d2q`, outputs `out`, `dout`, `d2out`, the solver [`SolveReport`](crate::SolveReport), the blocks' [`Health`](crate::Health)
-//!   and the same values as a flat [`Kin`](crate::Kin) (`flat`); `state.motion(omega, eps)` gives true
-//!   velocities and accelerations (`NameMotion`);
+//!   `d2q`, outputs `out`, `dout`, `d2out`, the solver [`SolveReport`](crate::SolveReport), the
+//!   blocks' [`Health`](crate::Health) and the same values as a flat [`Kin`](crate::Kin)
+//!   (`flat`); `state.motion(omega, eps)` gives true velocities and accelerations (`NameMotion`);
 //! * methods on `Name`: `solve(input)`, `kinematics(input, guess)`, `position(input, guess)`,
 //!   `kinematics_at(input, q)`, `outputs`, `residual`, `guess`, `check`, `position_with` and
-//!   `kinematics_with` taking a [`NewtonConfig`](crate::NewtonConfig), `sweep`, `sweep_at` and `assembly_modes`
-//!   (see below), `sensitivities` when requested and `mass_model` when dynamics is declared;
+//!   `kinematics_with` taking a [`NewtonConfig`](crate::NewtonConfig), `sweep`, `sweep_at` and
+//!   `assembly_modes` (see below), `sensitivities` when requested and `mass_model` when dynamics
+//!   is declared;
 //!   and the constants `NAME`, `PARAMS`, `INPUTS`, `UNKNOWNS`, `EQUATIONS`, `OUTPUTS`,
 //!   `BLOCKS` (the block-triangular decomposition) and `DECOMPOSITION` (the same in words, see
 //!   below); and `Mechanism::DRAWING`, what the declaration says about how the mechanism looks
@@ -182,10 +184,10 @@
 //!   vectors; `l @ q` turning with an input or unknown is a link, a constant vector is the
 //!   frame, a Cartesian vector with one moving coordinate a slider; links turning alike are one
 //!   plate), which `m.drawing()` of `kinloop::draw` draws;
-//! * implementations of [`Mechanism`](crate::Mechanism) (the flat, generated kernels) and [`Named`](crate::Named) (the same
-//!   API by name) for generic code. The methods above are the same for every mechanism: they
-//!   live once in [`Named`](crate::Named) and the generated ones only forward to it, so calling them needs no
-//!   import.
+//! * implementations of [`Mechanism`](crate::Mechanism) (the flat, generated kernels) and
+//!   [`Named`](crate::Named) (the same API by name) for generic code. The methods above are the
+//!   same for every mechanism: they live once in [`Named`](crate::Named) and the generated ones
+//!   only forward to it, so calling them needs no import.
 //!
 //! ```
 //! kinloop::mechanism! {
@@ -208,35 +210,34 @@
 //! slotted rocker, an RRP group) in closed form. Velocity analogs solve `J q' = -df/dphi` and acceleration analogs
 //! `J q'' = -D2f[(q', 1), (q', 1)]` with one factorisation per block shared by both.
 //!
-//! `Name::BLOCKS` lists the blocks in solve order ([`BlockInfo`](crate::BlockInfo): unknowns, equations, linear),
-//! and `Name::DECOMPOSITION` describes them in words: the counts and the mobility, then one line
-//! per block with its index (the one error locations use), how it is solved, and its unknowns
-//! `<-` its scalar equations (`loop.x`, `loop.y`, or an `eq` name). A block that is a classical
-//! Assur group is solved in closed form, without iteration (`closed form, angle equation`: one
-//! angle from `a cos q + b sin q = c`; `closed form, RRR dyad`: circle intersection; `closed
-//! form, length and angle`: a slotted rocker; `closed form, angle and slider`: an RRP group),
-//! on the assembly mode of the guess (the sign of the block's Jacobian determinant there) and
-//! on the guess's turn. Where its links fall short of closing the loop it is `NoAssembly`, as
-//! Newton; short by no more than the residual tolerance (a limit position rounded past: `0.1 +
-//! 0.2 > 0.3` in metres) it is the limit position, in every unit. `linear, NxN` is one linear solve; `Newton, NxN` iterates;
-//! `Newton, NxN sparse (K non-zeros)` iterates on a large coupled block (16 unknowns or more,
-//! a sparse Jacobian) whose LU follows its sparsity: an elimination order fixed at compile time,
-//! every pivot checked at run time, a dense LU where one is weak. Newton ends on the guess's turn
-//! too: an angle that enters its block only through sines and cosines of whole multiples of
-//! itself (`l @ q`, `l @ (q + gamma)`, `l @ (2 q)`) and that a long step carried more than half a
-//! turn out is moved back to its guess's turn and corrected once more there. A far guess can
-//! lead Newton into a fold of the residual (a local minimum where no step decreases it, links
-//! lying folded against each other) though the loops close elsewhere: there it restarts, with
-//! one such angle at a time turned by a quarter turn either way and by a half turn, and returns
-//! the root nearest the guess; only when every restart stalls too is the block `NoAssembly`
-//! ([`NewtonConfig::restarts`](crate::NewtonConfig::restarts); a sweep's steps never restart). From a far guess Newton may end
-//! in either assembly mode; the closed forms keep the guess's. A guess millions
-//! of turns out, where doubles are too far apart for an angle to meet the tolerance, is
-//! [`Error::TooManyTurns`](crate::Error::TooManyTurns) on both paths.
-//! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead (still in closed
-//! form where that one block is an Assur group: add `newton` for Newton), `#[kinloop(newton)]` uses
-//! Newton for every nonlinear block (the results are the same; both exist to compare and to
-//! debug).
+//! `Name::BLOCKS` lists the blocks in solve order ([`BlockInfo`](crate::BlockInfo): unknowns,
+//! equations, linear), and `Name::DECOMPOSITION` describes them in words: the counts and the
+//! mobility, then one line per block with its index (the one error locations use), how it is
+//! solved, and its unknowns `<-` its scalar equations (`loop.x`, `loop.y`, or an `eq` name). A
+//! block that is a classical Assur group is solved in closed form, without iteration (`closed form,
+//! angle equation`: one angle from `a cos q + b sin q = c`; `closed form, RRR dyad`: circle
+//! intersection; `closed form, length and angle`: a slotted rocker; `closed form, angle and
+//! slider`: an RRP group), on the assembly mode of the guess (the sign of the block's Jacobian
+//! determinant there) and on the guess's turn. Where its links fall short of closing the loop it is
+//! `NoAssembly`, as Newton; short by no more than the residual tolerance (a limit position rounded
+//! past: `0.1 + 0.2 > 0.3` in metres) it is the limit position, in every unit. `linear, NxN` is one
+//! linear solve; `Newton, NxN` iterates; `Newton, NxN sparse (K non-zeros)` iterates on a large
+//! coupled block (16 unknowns or more, a sparse Jacobian) whose LU follows its sparsity: an
+//! elimination order fixed at compile time, every pivot checked at run time, a dense LU where one
+//! is weak. Newton ends on the guess's turn too: an angle that enters its block only through sines
+//! and cosines of whole multiples of itself (`l @ q`, `l @ (q + gamma)`, `l @ (2 q)`) and that a
+//! long step carried more than half a turn out is moved back to its guess's turn and corrected once
+//! more there. A far guess can lead Newton into a fold of the residual (a local minimum where no
+//! step decreases it, links lying folded against each other) though the loops close elsewhere:
+//! there it restarts, with one such angle at a time turned by a quarter turn either way and by a
+//! half turn, and returns the root nearest the guess; only when every restart stalls too is the
+//! block `NoAssembly` ([`NewtonConfig::restarts`](crate::NewtonConfig::restarts); a sweep's steps
+//! never restart). From a far guess Newton may end in either assembly mode; the closed forms keep
+//! the guess's. A guess millions of turns out, where doubles are too far apart for an angle to meet
+//! the tolerance, is [`Error::TooManyTurns`](crate::Error::TooManyTurns) on both paths.
+//! `#[kinloop(dense)]` solves all unknowns as one block with dense LU instead (still in closed form
+//! where that one block is an Assur group: add `newton` for Newton), `#[kinloop(newton)]` uses
+//! Newton for every nonlinear block (the results are the same; both exist to compare and to debug).
 //!
 //! ```
 //! kinloop::mechanism! {

@@ -21,11 +21,12 @@
 //! Long sweeps (from 2000 samples) and long searches (from 256 starts) show a progress bar on
 //! standard error when it is a terminal.
 //!
-//! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a usage error (a parameter without a value too), 65 the declaration is
-//! rejected (diagnostics on standard error), 66 the file cannot be read, 69 the declaration uses
-//! what the run-time evaluator does not evaluate yet, 73 the `--events` file (or the
-//! `animate --out`, `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written (the help and the version too; a closed standard output
-//! too, found before anything is done).
+//! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a
+//! usage error (a parameter without a value too), 65 the declaration is rejected (diagnostics on
+//! standard error), 66 the file cannot be read, 69 the declaration uses what the run-time
+//! evaluator does not evaluate yet, 73 the `--events` file (or the `animate --out`,
+//! `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written
+//! (the help and the version too; a closed standard output too, found before anything is done).
 
 // Std's `eprintln!` and `eprint!` panic where standard error cannot be written (its reader
 // gone: `kinloop sweep ... 2>&1 | head -1`), and the panic message is lost with it: exit code
