@@ -70,6 +70,11 @@ pub struct Request<'a> {
 pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let format = match (req.format, Format::of(req.out)) {
         (Some(f), _) | (None, Some(f)) => f,
+        (None, None) if to_stdout(req.out) => {
+            return Err(usage(
+                "--out - writes the animation to standard output: give its format, --format svg or html",
+            ));
+        }
         (None, None) => {
             return Err(usage(format!(
                 "cannot tell the format of {} from its extension: name it .svg or .html, or give --format",
@@ -415,10 +420,19 @@ fn failed(name: &str, e: &dyn std::fmt::Display) -> Failed {
 /// file is removed again rather than left cut short ([`OutFile::write`](crate::output::OutFile::write)),
 /// an SVG or page that does not read.
 fn write_out(out: &Path, text: &str) -> Result<(), Failed> {
+    if to_stdout(out) {
+        return crate::output::text(text, "the animation");
+    }
     let what = format!("the animation {}", out.display());
     crate::output::created(Some(out), "the animation")?.map_or(Ok(()), |file| {
         file.write(&what, |mut file| file.write_all(text.as_bytes()).and_then(|()| file.flush()))
     })
+}
+
+/// Whether `--out` is `-`: standard output, as the usual convention has it (it made a file named
+/// `-`). A file of that name is `--out ./-`.
+fn to_stdout(out: &Path) -> bool {
+    out.as_os_str() == "-"
 }
 
 /// Frames of an angle input farther apart than this (a twentieth of a turn, 18 degrees) show

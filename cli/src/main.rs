@@ -407,7 +407,7 @@ enum Command {
         #[arg(long)]
         deg: bool,
         /// The file written: its extension (`.svg`, `.html`) tells the format unless `--format`
-        /// does.
+        /// does; `-` is standard output (with `--format`).
         #[arg(long, value_name = "FILE")]
         out: PathBuf,
         /// The format written, whatever the extension of `--out`.

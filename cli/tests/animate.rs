@@ -602,3 +602,32 @@ fn a_sweep_that_cannot_start_has_the_notes_of_sweep() {
     assert_eq!(note(&animate), note(&sweep), "{stderr}");
     assert!(!path.exists());
 }
+
+/// `--out -` writes the animation to standard output, the same bytes as to a file (it made a
+/// file named `-`); without `--format` it says to give one.
+#[test]
+fn out_dash_is_standard_output() {
+    let path = out("to_file.svg");
+    let p = path.display().to_string();
+    let fb = shipped("four_bar.kl");
+    let args = |out: &str| -> Vec<String> {
+        ["animate", &fb, "--params", FOUR_BAR, "--from", "0", "--to", "90", "--deg", "--samples", "7", "--out", out]
+            .into_iter()
+            .map(String::from)
+            .chain(["--format".to_string(), "svg".to_string()])
+            .collect()
+    };
+    let to_file = args(&p);
+    ok(&kinloop(&to_file.iter().map(String::as_str).collect::<Vec<_>>()));
+    let to_stdout = args("-");
+    let o = kinloop(&to_stdout.iter().map(String::as_str).collect::<Vec<_>>());
+    ok(&o);
+    assert_eq!(o.stdout, std::fs::read(&path).expect("written"), "standard output against the file");
+    assert!(!Path::new("-").exists(), "a file named `-` was made");
+    let no_format = &to_stdout[..to_stdout.len() - 2];
+    let o = kinloop(&no_format.iter().map(String::as_str).collect::<Vec<_>>());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--out - writes the animation to standard output: give its format"), "{stderr}");
+    assert!(o.stdout.is_empty() && !Path::new("-").exists());
+}
