@@ -1137,7 +1137,20 @@ fn messages_about_the_macro_are_said_for_a_file() {
     // `check` still reports the structure that shows the block.
     let out = kinloop(&["check", &write("seventeen.kl", &big)]);
     assert!(String::from_utf8_lossy(&out.stdout).contains("block 0 (Newton, 17x17)"), "{out:?}");
+    assert!(err.contains("17 unknowns solved together by dense Newton"), "{err}");
     assert!(err.contains("compile the declaration with `kinloop::mechanism!`"), "{err}");
+    // A linear block of as many is named as `check` names it, one linear system (it was said
+    // to be solved by dense Newton).
+    let eqs: Vec<String> = (2..=17).map(|i| format!("eq e{i}: x{i} == x{} + phi;", i - 1)).collect();
+    let linear = format!(
+        "#[kinloop(dense)]\npub struct Big {{ input phi; unknowns {}; eq e1: x1 == phi; {} }}\n",
+        unknowns.join(", "),
+        eqs.join(" ")
+    );
+    let err = check(&write("seventeen_linear.kl", &linear), 69);
+    assert!(err.contains("block 0 has 17 unknowns solved together as one linear system"), "{err}");
+    let out = kinloop(&["check", &write("seventeen_linear.kl", &linear)]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("block 0 (linear, 17x17)"), "{out:?}");
 }
 
 /// A sweep far out, where the input's doubles are coarser than its steps, is the arguments'

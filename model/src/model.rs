@@ -258,8 +258,11 @@ impl Model {
                 ));
             }
             if !sparse && n > MAX_DENSE {
+                // Named as `kinloop check` names the block: a linear block is one linear solve.
+                let how =
+                    if matches!(bp.solve, Solve::Linear { .. }) { "as one linear system" } else { "by dense Newton" };
                 return unsupported(format!(
-                    "block {b} has {n} unknowns solved together by dense Newton, more than the {MAX_DENSE} \
+                    "block {b} has {n} unknowns solved together {how}, more than the {MAX_DENSE} \
                      the run-time evaluator solves together: leave out `#[kinloop(dense)]` if the declaration has \
                      it (it solves every unknown in one block), declare the loops so that at most {MAX_DENSE} \
                      unknowns close together (`kinloop check` shows the blocks), or compile the \
