@@ -209,6 +209,8 @@ pub struct Notes {
     at_crossing: bool,
     /// A sweep starts at a singular position: a trace starts at a limit position.
     singular_start: bool,
+    /// ... with a pivot ratio below the sweep's `singular_pivot`, which the error names.
+    start_below_pivot: bool,
 }
 
 impl Notes {
@@ -220,17 +222,23 @@ impl Notes {
             at_limit: matches!(e, Error::SweepStopped { kind: EventKind::LimitPosition, .. }),
             at_crossing: matches!(e, Error::SweepStopped { kind: EventKind::SingularCrossing, .. }),
             singular_start: matches!(e, Error::SingularStart { .. }),
+            // The start's cause names the library's setting where the pivot ratio is below it.
+            start_below_pivot: matches!(e, Error::SingularStart { pivot_ratio, singular_pivot, .. }
+                if pivot_ratio < singular_pivot),
         }
     }
 
     /// Writes the notes on standard error.
     pub fn write(self) {
-        let Notes { lower_pivot, at_limit, at_crossing, singular_start } = self;
+        let Notes { lower_pivot, at_limit, at_crossing, singular_start, start_below_pivot } = self;
         if lower_pivot {
             eprintln!("note: `--singular-pivot RATIO` lowers it on the command line");
         }
         if singular_start {
             eprintln!("note: `kinloop trace` traces the curve from a limit position (not from a change point)");
+        }
+        if start_below_pivot {
+            eprintln!("note: `SweepConfig::singular_pivot` is `--singular-pivot RATIO` on the command line");
         }
         // The input turns back there: no sweep goes on, the curve does.
         if at_limit {

@@ -1343,6 +1343,9 @@ fn a_singular_start_below_no_threshold_says_what_found_it() {
         assert_eq!(out.status.code(), Some(1), "{pivot}: {err}");
         assert!(err.contains("error: the sweep starts at a singular position"), "{pivot}: {err}");
         assert!(err.contains(says), "{pivot}: `{says}` missing: {err}");
+        // The library's setting named in the first case is mapped to the option, once.
+        let mapped = "note: `SweepConfig::singular_pivot` is `--singular-pivot RATIO` on the command line";
+        assert_eq!(err.matches(mapped).count(), usize::from(pivot == "1e-6"), "{pivot}: {err}");
     }
 }
 
