@@ -5,7 +5,9 @@
 /// A count: a whole number written in decimal digits, 0 or more. Its bounds (at least 1 or 3,
 /// at most a limit) are the commands' checks, which name them.
 pub fn count(text: &str) -> Result<usize, String> {
-    whole(text, "a count", "361")
+    // One example for every count (samples, starts, jobs, frames): a small one, which reads
+    // as a count of any of them (`--jobs 2.5` was told "such as 361").
+    whole(text, "a count", "10")
 }
 
 /// A seed (`synth --seed`): a whole number written in decimal digits, from 0 to the largest
@@ -61,7 +63,7 @@ mod tests {
         for (text, says) in [
             ("-3", "cannot be negative"),
             ("-0.5", "cannot be negative"),
-            ("2.5", "a whole number written in digits"),
+            ("2.5", "a whole number written in digits, such as 10"),
             ("1e3", "a whole number written in digits"),
             ("inf", "a whole number written in digits"),
             ("NaN", "a whole number written in digits"),
