@@ -55,10 +55,11 @@ const COLLAPSED: f64 = 1e-12;
 /// carries the coupler point, not the body: its coupler turns as another link of `f`, so it
 /// does not keep a body's angle, and its `body_angle` is `0`.
 ///
-/// Errors ([`ClassicalError`]): `f` without a coupler point (a function generator); a value that
-/// is not finite; a coupler of no length; angle lists of different lengths; the coupler point on
-/// the joint `B` or `C` (within `1e-12` of the four-bar's size), where its path is a circle
-/// about `A` or `D` and a cognate collapses.
+/// Errors ([`ClassicalError`]): `f` without a coupler point (a function generator); a value
+/// that is not finite; a link length that is not positive, or a coupler of no length against
+/// the others; angle lists of different lengths; the coupler point on the joint `B` or `C`
+/// (within `1e-12` of the four-bar's size), where its path is a circle about `A` or `D` and a
+/// cognate collapses.
 ///
 /// ```
 /// use kinloop_runtime::Vec2;
@@ -109,6 +110,14 @@ pub fn cognates(f: &FourBar) -> Result<[FourBar; 2], ClassicalError> {
             finite(v, || format!("the {what} angle at point {j}"))?;
         }
     }
+    // A cognate's links are the original's scaled: a length that is not positive makes none.
+    for (link, length) in [("input", input), ("coupler", coupler), ("output", output)] {
+        if length <= 0.0 {
+            return Err(ClassicalError::Degenerate(format!(
+                "the {link} link's length is {length}: a four-bar's links have positive lengths"
+            )));
+        }
+    }
     let n = f.inputs.len();
     if f.couplers.len() != n || f.outputs.len() != n {
         return Err(ClassicalError::BadRange {
@@ -120,9 +129,9 @@ pub fn cognates(f: &FourBar) -> Result<[FourBar; 2], ClassicalError> {
             ),
         });
     }
-    let size = ground.abs() + input.abs() + coupler.abs() + output.abs();
+    let size = ground.abs() + input + coupler + output;
     let tiny = COLLAPSED * size;
-    if coupler.abs() <= tiny {
+    if coupler <= tiny {
         return Err(ClassicalError::Degenerate(format!(
             "the coupler's length {coupler} is no length against the four-bar's size {size}: the coupler point's \
              place on it is not defined"
@@ -362,7 +371,8 @@ mod tests {
         refused(&|f| f.coupler_point = Some((0.0, 0.6)), "on the joint B");
         refused(&|f| f.coupler_point = Some((4.0, 0.0)), "on the joint C");
         refused(&|f| f.coupler_point = Some((4.0 + 1e-14, 1e-16)), "on the joint C");
-        refused(&|f| f.links.coupler = 0.0, "no length");
+        refused(&|f| f.links.coupler = 0.0, "the coupler link's length is 0");
+        refused(&|f| f.links.input = -1.5, "the input link's length is -1.5");
         refused(&|f| f.links.output = f64::NAN, "the output link's length is not finite");
         refused(&|f| f.input_pivot.y = f64::INFINITY, "the input pivot's y is not finite");
         refused(&|f| f.couplers[1] = f64::NAN, "the coupler angle at point 1 is not finite");
