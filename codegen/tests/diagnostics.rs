@@ -686,6 +686,34 @@ fn other_notations_are_told_what_to_write() {
     assert_eq!(errors(&slider("loop c: r @ phi == (x, 0) + l @ psi; output w = (x, 0).x;")), Vec::<String>::new());
 }
 
+/// A value in degrees written with `deg` as a unit, before or after its number: `deg` is a
+/// function, and the product `30 * deg` the messages suggested for `30deg` and `deg 30` would
+/// not compile either.
+#[test]
+fn degrees_written_as_a_unit_are_told_to_call_deg() {
+    for (guess, says) in [
+        ("30deg", "a value in degrees is written `deg(30)`: `deg` is a function"),
+        ("30 deg", "a value in degrees is written `deg(30)`: `deg` is a function"),
+        ("deg 30", "a value in degrees is written `deg(30)`: `deg` is a function"),
+        ("1.5deg", "a value in degrees is written `deg(1.5)`: `deg` is a function"),
+        ("1.5rad", "`1.5rad` is not a number: angles are in radians already, write `1.5`"),
+    ] {
+        let e = errors(&format!(
+            "pub struct S {{ params r, l; input phi; unknowns psi = {guess}, x; loop c: r @ phi == (x, 0) + l @ psi; }}"
+        ));
+        assert_eq!(e, [says], "{guess}");
+    }
+    // Another function before a number may be a call or a product with a name of the same spelling.
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi = sin 30, x; loop c: r @ phi == (x, 0) + l @ psi; }",
+    );
+    assert_eq!(
+        e,
+        ["expected an operator between `sin` and `30`: write `sin * 30` for a product, \
+             or `sin(30)` to call a function"]
+    );
+}
+
 /// A Rust keyword where a name belongs is named as one, with a name to write instead; the
 /// message said "expected a name" of a word that reads as one.
 #[test]

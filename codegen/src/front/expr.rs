@@ -318,6 +318,17 @@ fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
         "f16", "f32", "f64", "f128", "i8", "i16", "i32", "i64", "i128", "isize", "u8", "u16", "u32", "u64", "u128",
         "usize",
     ];
+    // `30deg`, `1.5rad`: a unit written right after a number. `deg` is a function, so the
+    // product that `2pi` below suggests would not compile either.
+    if suffix == "deg" {
+        return Err(syn::Error::new(span, degrees_message(digits)));
+    }
+    if suffix == "rad" {
+        return Err(syn::Error::new(
+            span,
+            format!("`{digits}{suffix}` is not a number: angles are in radians already, write `{digits}`"),
+        ));
+    }
     if !suffix.is_empty() && !TYPES.contains(&suffix) && suffix.starts_with(|c: char| c.is_alphabetic()) {
         // `2pi`: a name written right after a number, as in a textbook.
         return Err(syn::Error::new(
@@ -344,6 +355,12 @@ fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
         ));
     }
     Ok(value)
+}
+
+/// The error for a value in degrees written with `deg` as a unit (`30 deg`, `30deg`, `deg 30`)
+/// instead of called.
+fn degrees_message(value: &str) -> String {
+    format!("a value in degrees is written `deg({value})`: `deg` is a function")
 }
 
 struct Parser {
@@ -433,6 +450,10 @@ impl Parser {
         if !vector && (group.is_some() || cursor.literal().is_some()) {
             let next = input.cursor().token_tree().map(|(tt, _)| tt.to_string()).unwrap_or_default();
             let next: String = next.chars().take(24).collect();
+            // `deg 30`: a function, so `deg * 30` would not compile; only the call is meant.
+            if matches!(&lhs, Expr::Var(f) if f == "deg") && cursor.literal().is_some() {
+                return Err(input.error(degrees_message(&next)));
+            }
             return Err(input.error(format!(
                 "expected an operator between `{}` and `{next}`: write `{} * {next}` for a product{}",
                 short(&lhs.show()),
@@ -457,7 +478,7 @@ impl Parser {
         {
             let left = short(&lhs.show());
             return Err(input.error(if name == "deg" {
-                format!("a value in degrees is written `deg({left})`: `deg` is a function")
+                degrees_message(&left)
             } else {
                 format!(
                     "expected an operator between `{left}` and `{name}`: write `{left} * {name}` for a product{}",
