@@ -1099,6 +1099,29 @@ fn a_misspelt_option_gets_the_option() {
     assert!(!e[0].contains("did you mean"), "{e:#?}");
 }
 
+/// Options without their `,` and options written as strings are told how to write them: the
+/// first was "options take no value" of the second option, the other syn's "expected ident".
+#[test]
+fn options_without_comma_or_in_quotes_are_told_how_to_write() {
+    let decl = |attr: &str| {
+        errors(&format!(
+            "{attr} pub struct S {{ params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; }}"
+        ))
+    };
+    for (attr, says) in [
+        ("#[kinloop(dense newton)]", "options are separated by `,`: write `#[kinloop(dense, newton)]`"),
+        ("#[kinloop(dense = 1)]", "kinloop options take no value: write `#[kinloop(dense)]`"),
+        ("#[kinloop(\"newton\")]", "an option is a name, not a string: write `#[kinloop(newton)]`"),
+        (
+            "#[kinloop(\"fast\")]",
+            "an option is a name, not a string: `#[kinloop(dense)]`, `#[kinloop(newton)]` or \
+             `#[kinloop(sensitivities)]`",
+        ),
+    ] {
+        assert_eq!(decl(attr), [says], "{attr}");
+    }
+}
+
 /// Where the angle of `@` is an angle by the rest of the mechanism, swapping the two cannot
 /// help: the length is told to be a length, not to trade places with another angle. Where the
 /// angle is one only by terms whose length is an angle (`th @ e`, `deg(30) @ e`), it is a

@@ -172,7 +172,7 @@ fn split_attributes(attrs: Vec<Attribute>, errors: &mut Errors) -> (Vec<Attribut
             }
         } else if attr.path().is_ident("kinloop") {
             if let Err(e) = attr.parse_nested_meta(|meta| parse_option(&meta, &mut options, errors)) {
-                errors.push(e);
+                errors.push(quoted_option(&attr).unwrap_or(e));
             }
         } else {
             let msg = if attr.path().is_ident("derive") {
@@ -227,14 +227,42 @@ fn parse_option(meta: &syn::meta::ParseNestedMeta, options: &mut Options, errors
         )));
     };
     if let Some(value) = option_value(meta)? {
-        errors
-            .push(syn::Error::new_spanned(value, format!("kinloop options take no value: write `#[kinloop({name})]`")));
+        // `dense newton`: the next option without its `,`, not a value of this one.
+        let next = value.clone().into_iter().next().and_then(|t| match t {
+            proc_macro2::TokenTree::Ident(id) if OPTIONS.contains(&id.to_string().as_str()) => Some(id),
+            _ => None,
+        });
+        let msg = match next {
+            Some(next) => format!("options are separated by `,`: write `#[kinloop({name}, {next})]`"),
+            None => format!("kinloop options take no value: write `#[kinloop({name})]`"),
+        };
+        errors.push(syn::Error::new_spanned(value, msg));
     }
     match option {
         Some(_) => errors.push(syn::Error::new(span, format!("the option `{name}` is given twice; keep one"))),
         None => *option = Some(span),
     }
     Ok(())
+}
+
+/// The error for an option written as a string, `#[kinloop("dense")]`, saying to write it as a
+/// name; syn's own message ("expected ident") names neither. `None` for anything else.
+fn quoted_option(attr: &Attribute) -> Option<syn::Error> {
+    let syn::Meta::List(list) = &attr.meta else { return None };
+    let lit = list.tokens.clone().into_iter().find_map(|t| match t {
+        proc_macro2::TokenTree::Literal(lit) => Some(lit),
+        _ => None,
+    })?;
+    let syn::Lit::Str(text) = syn::Lit::new(lit.clone()) else { return None };
+    let text = text.value();
+    let msg = if OPTIONS.contains(&text.as_str()) {
+        format!("an option is a name, not a string: write `#[kinloop({text})]`")
+    } else {
+        "an option is a name, not a string: `#[kinloop(dense)]`, `#[kinloop(newton)]` or \
+         `#[kinloop(sensitivities)]`"
+            .to_string()
+    };
+    Some(syn::Error::new(lit.span(), msg))
 }
 
 /// The tokens after an option's name up to the next `,` (a value: `= 1`, `(1)`), consumed;
