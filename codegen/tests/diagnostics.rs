@@ -1099,6 +1099,23 @@ fn a_misspelt_option_gets_the_option() {
     assert!(!e[0].contains("did you mean"), "{e:#?}");
 }
 
+/// A value after `:` (`psi: 0.5`, as YAML writes a key's value) is told to take `=`: "no type
+/// is needed: write `psi` alone" dropped the value. A type after it is still told to go.
+#[test]
+fn a_value_after_a_colon_is_told_to_take_equals() {
+    for (decls, says) in [
+        ("params r: 1.5, l; input phi; unknowns psi, x;", "a value is given with `=`, not `:`: write `r = ...`"),
+        ("params r, l; input phi; unknowns psi: -0.5, x;", "a value is given with `=`, not `:`: write `psi = ...`"),
+        (
+            "params r, l; input phi; unknowns psi: f64, x;",
+            "no type is needed: write `psi` alone (every parameter, input and unknown is an `f64`)",
+        ),
+    ] {
+        let e = errors(&format!("pub struct S {{ {decls} loop c: r @ phi == (x, 0) + l @ psi; }}"));
+        assert_eq!(e, [says], "{decls}");
+    }
+}
+
 /// Options without their `,` and options written as strings are told how to write them: the
 /// first was "options take no value" of the second option, the other syn's "expected ident".
 #[test]

@@ -397,6 +397,10 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
         // `r := 1` is `:` then `=` to the tokenizer: an assignment of another language, not a
         // type.
         return Err(input.error(format!("a value is given with `=`, not `:=`: write `{name} = ...`")));
+    } else if input.peek(Token![:]) && kind != DeclKind::Inputs && number_after_colon(input) {
+        // `r: 1.5`, as a key and its value are written in YAML or Python: a value, not a type,
+        // which "write `r` alone" would drop.
+        return Err(input.error(format!("a value is given with `=`, not `:`: write `{name} = ...`")));
     } else if input.peek(Token![:]) {
         return Err(input.error(format!(
             "no type is needed: write `{name}` alone (every parameter, input and unknown is an `f64`)"
@@ -409,6 +413,18 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
         return Err(e);
     }
     Ok(Decl { docs: attrs, name, value })
+}
+
+/// Whether `input`, at a `:`, goes on with a number (`r: 1.5`, `psi: -0.3`): a value, not a type.
+fn number_after_colon(input: ParseStream) -> bool {
+    let fork = input.fork();
+    if fork.parse::<Token![:]>().is_err() {
+        return false;
+    }
+    if fork.peek(Token![-]) {
+        let _ = fork.parse::<Token![-]>();
+    }
+    fork.cursor().literal().is_some()
 }
 
 /// The error for a token after a complete value that is Rust but not kinloop, saying what to
