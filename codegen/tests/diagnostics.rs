@@ -347,6 +347,31 @@ fn a_body_property_given_with_equals_or_colon_is_told_to_drop_it() {
     }
 }
 
+/// A load written without its name read `at` or `on` as the name, and then asked for the `at`
+/// or `on` the user had written.
+#[test]
+fn a_load_without_its_name_is_told_to_name_it() {
+    for (load, says) in [
+        (
+            "force at (x, 0) = (1, 0);",
+            "expected the force's name before `at` (it appears in error messages): `force name at point = (fx, fy);`",
+        ),
+        (
+            "torque on phi = 1;",
+            "expected the torque's name before `on` (it appears in error messages): `torque name on angle = scalar;`",
+        ),
+    ] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} params m; body b: mass m, com (x, 0); {load} }}"));
+        assert_eq!(e, [says], "{load}");
+    }
+    // Loads named `at` and `on` are loads all the same.
+    let e = errors(&format!(
+        "pub struct S {{ {SLIDER} params m; body b: mass m, com (x, 0); \
+         force at at (x, 0) = (1, 0); torque on on phi = 1; }}"
+    ));
+    assert_eq!(e, Vec::<String>::new());
+}
+
 #[test]
 fn gravity_without_parentheses_is_told_to_add_them() {
     let e = errors(&format!("pub struct S {{ {SLIDER} params m, g; body b: mass m, com (x, 0); gravity 0, -g; }}"));

@@ -91,6 +91,12 @@ pub(super) fn parse_body(input: ParseStream) -> syn::Result<BodyDef> {
 /// After `force`: `name at point = vector`.
 pub(super) fn parse_force(input: ParseStream) -> syn::Result<ItemKind> {
     const FORCE: &str = "`force name at point = (fx, fy);`";
+    // `force at p = ...`: without its name, `at` was read as the name and then missed.
+    if input.peek(kw::at) && !input.peek2(kw::at) {
+        return Err(
+            input.error(format!("expected the force's name before `at` (it appears in error messages): {FORCE}"))
+        );
+    }
     let name = load_name(input, FORCE)?;
     if !input.peek(kw::at) {
         return Err(input.error(format!("expected `at` and the point the force acts at: {FORCE}")));
@@ -104,6 +110,11 @@ pub(super) fn parse_force(input: ParseStream) -> syn::Result<ItemKind> {
 /// After `torque`: `name on angle = scalar`.
 pub(super) fn parse_torque(input: ParseStream) -> syn::Result<ItemKind> {
     const TORQUE: &str = "`torque name on angle = scalar;`";
+    if input.peek(kw::on) && !input.peek2(kw::on) {
+        return Err(
+            input.error(format!("expected the torque's name before `on` (it appears in error messages): {TORQUE}"))
+        );
+    }
     let name = load_name(input, TORQUE)?;
     if !input.peek(kw::on) {
         return Err(input.error(format!("expected `on` and the angle the torque acts on: {TORQUE}")));
