@@ -372,6 +372,21 @@ fn a_load_without_its_name_is_told_to_name_it() {
     assert_eq!(e, Vec::<String>::new());
 }
 
+/// A misspelt angle after `turns` or `on` is named with the input or unknown meant.
+#[test]
+fn a_misspelt_angle_of_a_body_or_torque_gets_the_name_meant() {
+    let e = errors(&format!(
+        "pub struct S {{ {SLIDER} params m; body b: mass m, com (x, 0), turns pis; torque t on ph = 1; }}"
+    ));
+    assert_eq!(
+        e,
+        [
+            "`turns pis`: `pis` is not declared (did you mean `psi`?); `turns` takes an input or an angle unknown",
+            "`on ph`: `ph` is not declared (did you mean `phi`?); `on` takes an input or an angle unknown",
+        ]
+    );
+}
+
 #[test]
 fn gravity_without_parentheses_is_told_to_add_them() {
     let e = errors(&format!("pub struct S {{ {SLIDER} params m, g; body b: mass m, com (x, 0); gravity 0, -g; }}"));

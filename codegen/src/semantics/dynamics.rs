@@ -10,6 +10,7 @@ use super::lower::{Lowerer, Place};
 use super::scope::key;
 use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
+use crate::front::suggest::similar;
 use crate::front::syntax::BodyDef;
 use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
 use crate::graph::multiples;
@@ -411,9 +412,21 @@ fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
         Some(Symbol::Let(_) | Symbol::Later(_) | Symbol::Poisoned) => "a named value",
         None => "not declared",
     };
+    // A misspelt input or unknown (`turns bet`) is named with the one meant, as in expressions.
+    let hint = found.is_none().then(|| {
+        let angles: Vec<String> = lw
+            .scope
+            .symbols
+            .iter()
+            .filter(|(_, (s, _))| matches!(s, Symbol::Unknown(_) | Symbol::Input(_)))
+            .map(|(k, _)| k.clone())
+            .collect();
+        similar(&key(id), angles.iter()).map(|s| format!(" (did you mean `{s}`?)"))
+    });
+    let hint = hint.flatten().unwrap_or_default();
     lw.errors.push(syn::Error::new(
         id.span(),
-        format!("`{clause} {id}`: `{id}` is {what}; `{clause}` takes an input or an angle unknown"),
+        format!("`{clause} {id}`: `{id}` is {what}{hint}; `{clause}` takes an input or an angle unknown"),
     ));
     None
 }
