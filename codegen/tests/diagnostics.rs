@@ -783,6 +783,16 @@ fn a_keyword_as_a_name_is_told_to_change_or_go_raw() {
             "params r, l; input phi; unknowns psi, x; eq as: x == 1;",
             "`as` is a Rust keyword and cannot name an `eq`: choose another name, such as `as_`, or write the raw identifier `r#as`",
         ),
+        // `_` is no name, and `r#_` does not lex: neither `__` nor the raw form is offered.
+        (
+            "params r, l, _; input phi; unknowns psi, x;",
+            "`_` is Rust's placeholder, not a name, and cannot name a parameter: give it a name (one that starts \
+             with `_`, such as `_spare`, keeps an unused parameter without a warning)",
+        ),
+        (
+            "params r, l; input phi; unknowns psi, x; let _ = x;",
+            "`_` is Rust's placeholder, not a name, and cannot name a `let`: give it a name",
+        ),
     ] {
         let e = errors(&format!("pub struct S {{ {decl} loop c: r @ phi == (x, 0) + l @ psi; }}"));
         assert!(e.iter().any(|m| m == says), "{decl}: {e:#?}");

@@ -487,6 +487,19 @@ fn keyword_as_name(input: ParseStream, what: &str) -> Option<syn::Error> {
     if word == "mut" {
         return Some(input.error(format!("remove `mut`: {what} names one value, which is never reassigned")));
     }
+    // `_` is no name at all, and `r#_` does not lex: neither the raw form nor `__` helps.
+    if word == "_" {
+        let unused = if what == "a parameter" {
+            " (one that starts with `_`, such as `_spare`, keeps an unused parameter without a warning)"
+        } else {
+            ""
+        };
+        return Some(
+            input.error(format!(
+                "`_` is Rust's placeholder, not a name, and cannot name {what}: give it a name{unused}"
+            )),
+        );
+    }
     // These four are keywords even as raw identifiers.
     let raw = if matches!(word.as_str(), "self" | "Self" | "super" | "crate") {
         String::new()
