@@ -487,6 +487,18 @@ fn an_input_the_loops_determine_is_offered_to_become_an_unknown() {
     assert!(e[0].contains("or turn 1 parameter it uses into an unknown"), "{e:#?}");
 }
 
+/// An over-determined part that uses no parameter is not told to turn one into an unknown.
+#[test]
+fn an_over_determined_part_without_parameters_offers_none() {
+    let e = errors("pub struct S { input phi; unknowns x; eq e: x == 1 + phi; eq f: x == 2 + phi; }");
+    assert_eq!(e.len(), 3, "{e:#?}");
+    let help = "help: remove 1 scalar equation of the over-determined part (a loop that repeats another contour?)";
+    assert!(e[0].ends_with(help), "{e:#?}");
+    // With two inputs, one of them may become the unknown.
+    let e = errors("pub struct S { inputs phi, t; unknowns x; eq e: x == phi; eq f: x == t; }");
+    assert!(e[0].contains("or turn 1 input it uses into an unknown"), "{e:#?}");
+}
+
 /// A centre of mass or a force's point has lengths for coordinates: an angle unknown there put
 /// the body at so many radians, its mass counted in mass rad^2 beside the others' mass
 /// length^2, and the reduced inertia changed with the unit of length, without a word. The

@@ -134,16 +134,24 @@ fn over_part(model: &Model, dm: &Imbalance, involved: &[usize], msg: &mut String
             msg.push_str(&format!(", and {}", no_unknown(&empty)));
         }
         let surplus = involved.len().saturating_sub(dm.over_unknowns.len()).max(1);
-        let what = if inputs_may_become_unknowns(model, &involved, surplus) {
-            plural(surplus, "parameter or input", "parameters or inputs")
-        } else {
-            plural(surplus, "parameter", "parameters")
+        // Only what the part uses can become an unknown: equations of constants and inputs
+        // (`eq e: x == 1; eq f: x == 2;`) have no parameter to offer.
+        let params = parameters_used(model, &involved) >= surplus;
+        let what = match (inputs_may_become_unknowns(model, &involved, surplus), params) {
+            (true, true) => Some(plural(surplus, "parameter or input", "parameters or inputs")),
+            (true, false) => Some(plural(surplus, "input", "inputs")),
+            (false, true) => Some(plural(surplus, "parameter", "parameters")),
+            (false, false) => None,
+        };
+        let turn = match what {
+            Some(what) => {
+                format!(", or turn {what} it uses into {}", if surplus == 1 { "an unknown" } else { "unknowns" })
+            }
+            None => String::new(),
         };
         help.push(format!(
-            "remove {} of the over-determined part (a loop that repeats another contour?), \
-             or turn {what} it uses into {}",
-            eqs(surplus),
-            if surplus == 1 { "an unknown" } else { "unknowns" }
+            "remove {} of the over-determined part (a loop that repeats another contour?){turn}",
+            eqs(surplus)
         ));
     }
     if !empty.is_empty() {
@@ -188,6 +196,13 @@ fn inputs_may_become_unknowns(model: &Model, equations: &BTreeSet<usize>, surplu
     }
     let residuals: Vec<_> = equations.iter().map(|&e| model.equations[e].residual).collect();
     model.graph.leaves_of(&residuals).iter().any(|l| matches!(l, crate::graph::dag::Leaf::Input(_)))
+}
+
+/// How many parameters `equations` depend on.
+fn parameters_used(model: &Model, equations: &BTreeSet<usize>) -> usize {
+    let residuals: Vec<_> = equations.iter().map(|&e| model.equations[e].residual).collect();
+    let leaves = model.graph.leaves_of(&residuals);
+    leaves.iter().filter(|l| matches!(l, crate::graph::dag::Leaf::Param(_))).count()
 }
 
 /// Describes the under-determined part in `msg` and adds its help lines. `involved`: the
