@@ -1161,6 +1161,35 @@ fn a_misspelt_option_gets_the_option() {
     assert!(!e[0].contains("did you mean"), "{e:#?}");
 }
 
+/// A `;` written for the `,` between the names of a list: the name after it is told to join
+/// the list with a `,`; "does not start an item" named no fix.
+#[test]
+fn a_semicolon_between_the_names_of_a_list_is_told_to_be_a_comma() {
+    for (decls, says) in [
+        (
+            "params r, l; input phi; unknowns psi = 0.5; x = 1;",
+            "`x` does not start an item: to declare it with the `unknowns` before, separate the names with `,`, \
+             not `;` (`unknowns ..., psi, x`)",
+        ),
+        (
+            "params r; l; input phi; unknowns psi, x;",
+            "`l` does not start an item: to declare it with the `params` before, separate the names with `,`, \
+             not `;` (`params ..., r, l`)",
+        ),
+    ] {
+        let e = errors(&format!("pub struct S {{ {decls} loop c: r @ phi == (x, 0) + l @ psi; }}"));
+        assert_eq!(e, [says], "{decls}");
+    }
+    // After another item, or before `==`, the word is still no item, with the list of items.
+    let e =
+        errors("pub struct S { params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; y = 1; }");
+    assert!(e[0].starts_with("`y` does not start an item; an item starts with"), "{e:#?}");
+    let e = errors(
+        "pub struct S { params r, l; input phi; unknowns psi, x; x == r; loop c: r @ phi == (x, 0) + l @ psi; }",
+    );
+    assert!(e[0].starts_with("`x` does not start an item; an item starts with"), "{e:#?}");
+}
+
 /// A value after `:` (`psi: 0.5`, as YAML writes a key's value) is told to take `=`: "no type
 /// is needed: write `psi` alone" dropped the value. A type after it is still told to go.
 #[test]

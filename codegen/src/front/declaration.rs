@@ -10,7 +10,7 @@
 //! The parser recovers at `;` after an error, so all syntax errors of a declaration are reported
 //! together.
 
-use super::item::{inner_attribute, not_struct_doc, parse_item, skip_item};
+use super::item::{inner_attribute, list_continued, not_struct_doc, parse_item, skip_item};
 use super::suggest::similar;
 use super::syntax::{Errors, MechanismDef, Options};
 use super::{limits, names};
@@ -281,6 +281,15 @@ fn parse_body(input: ParseStream, def: &mut MechanismDef, errors: &mut Errors) -
     let brace = syn::braced!(content in input);
     def.body = brace.span.join();
     while !content.is_empty() {
+        match list_continued(&content, &mut def.items, errors) {
+            Ok(true) => continue,
+            Ok(false) => {}
+            Err(e) => {
+                errors.push(e);
+                skip_item(&content);
+                continue;
+            }
+        }
         match parse_item(&content, errors) {
             Ok(item) => def.items.push(item),
             Err(e) => {

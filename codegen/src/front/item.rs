@@ -192,6 +192,49 @@ fn at_item_start(input: ParseStream) -> bool {
         || input.peek(Token![#])
 }
 
+/// A name after a `params`, `input` or `unknowns` list that a `;` ended, as in `unknowns psi =
+/// 0.5; x = 1;`: a `;` written for the `,` between names. Its error says to write the `,` ("does
+/// not start an item" named no fix), and the names up to the next `;` join the list, so that
+/// they keep their fields in the fallback items. Returns whether `input` started so.
+pub(super) fn list_continued(input: ParseStream, items: &mut [Item], errors: &mut Errors) -> syn::Result<bool> {
+    let Some(Item { kind: ItemKind::Decls(kind, decls), .. }) = items.last_mut() else { return Ok(false) };
+    let Some(last) = decls.last().map(|d| d.name.clone()) else { return Ok(false) };
+    if at_item_start(input) {
+        return Ok(false);
+    }
+    let Some((name, rest)) = input.cursor().ident() else { return Ok(false) };
+    let declared = match rest.punct() {
+        Some((p, after)) => match p.as_char() {
+            ',' | ';' => true,
+            '=' => after.punct().is_none_or(|(q, _)| q.as_char() != '='),
+            _ => false,
+        },
+        None => false,
+    };
+    if !declared {
+        return Ok(false);
+    }
+    let keyword = match kind {
+        DeclKind::Params => "params",
+        DeclKind::Inputs => "inputs",
+        DeclKind::Unknowns => "unknowns",
+    };
+    errors.push(syn::Error::new(
+        name.span(),
+        format!(
+            "`{name}` does not start an item: to declare it with the `{keyword}` before, separate the names \
+             with `,`, not `;` (`{keyword} ..., {last}, {name}`)"
+        ),
+    ));
+    decls.extend(parse_decls(input, *kind, errors)?);
+    if input.peek(Token![;]) {
+        input.parse::<Token![;]>()?;
+    } else if !at_item_start(input) {
+        skip_item(input);
+    }
+    Ok(true)
+}
+
 /// The words that start an item, for did-you-mean suggestions.
 const KEYWORDS: &[&str] = &[
     "params", "input", "inputs", "unknowns", "let", "loop", "eq", "point", "output", "body", "force", "torque",
