@@ -499,6 +499,17 @@ fn an_over_determined_part_without_parameters_offers_none() {
     assert!(e[0].contains("or turn 1 input it uses into an unknown"), "{e:#?}");
 }
 
+/// A vector as the angle of `@` is the one type error: its coordinates are no coordinates of a
+/// position, and an angle among them was told to be a length as well.
+#[test]
+fn a_vector_as_the_angle_of_a_polar_term_is_one_error() {
+    for tail in ["point p = r @ (phi, 1);", "loop d: r @ (psi, phi) == (x, 0);", "point p = (phi, 0) @ psi;"] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} {tail} }}"));
+        assert_eq!(e.len(), 1, "{tail}: {e:#?}");
+        assert!(e[0].starts_with("`@` builds a vector from a scalar length and a scalar angle"), "{e:#?}");
+    }
+}
+
 /// A centre of mass or a force's point has lengths for coordinates: an angle unknown there put
 /// the body at so many radians, its mass counted in mass rad^2 beside the others' mass
 /// length^2, and the reduced inertia changed with the unit of length, without a word. The

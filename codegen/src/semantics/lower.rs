@@ -443,7 +443,16 @@ impl Lowerer {
                     )));
                     return None;
                 }
-                let res = self.binary(*op, *op_span, (lhs, rhs), l, r)?;
+                let Some(res) = self.binary(*op, *op_span, (lhs, rhs), l, r) else {
+                    // A vector as an operand of `@` (`a @ (phi, 1)`) is no position, as the
+                    // vectors `norm` and `dot` take are none: its coordinates are not told to be
+                    // lengths too, a second error for the one mistake the type error names.
+                    if *op == BinOp::Polar {
+                        self.named_coordinates.truncate(before[0]);
+                        self.let_uses.truncate(before[1]);
+                    }
+                    return None;
+                };
                 let verb = match op {
                     BinOp::Add => Some("adds"),
                     BinOp::Sub => Some("subtracts"),
