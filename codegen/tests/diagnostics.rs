@@ -510,6 +510,34 @@ fn a_vector_as_the_angle_of_a_polar_term_is_one_error() {
     }
 }
 
+/// `min`, `max` and `clamp` return one of their arguments: an angle beside a length there is the
+/// unit mix a sum of the two is, which compiled into an output that changed with the unit of
+/// length. One error per call, however many of its arguments mix.
+#[test]
+fn an_angle_beside_a_length_in_min_max_or_clamp_is_a_unit_mix() {
+    for (tail, shown) in [
+        ("output w = max(x, psi);", "max(x, psi)"),
+        ("output w = 2 * min(psi, x);", "min(psi, x)"),
+        ("output w = clamp(x, 0, psi);", "clamp(x, 0, psi)"),
+        ("output w = clamp(psi, x, l);", "clamp(psi, x, l)"),
+        ("eq e: u == max(x, phi);", "max(x, phi)"),
+    ] {
+        let e = errors(&format!(
+            "pub struct S {{ {SLIDER} {} {tail} }}",
+            if tail.starts_with("eq") { "unknowns u;" } else { "" }
+        ));
+        assert_eq!(e.len(), 1, "{tail}: {e:#?}");
+        assert!(
+            e[0].starts_with(&format!("`{shown}` compares an angle and a length, so its value would change")),
+            "{e:#?}"
+        );
+    }
+    // Arguments of one kind, or a constant bound, stay as written.
+    for tail in ["output w = max(x, l);", "output w = clamp(psi, 0, pi);", "output w = min(phi, psi);"] {
+        assert_eq!(errors(&format!("pub struct S {{ {SLIDER} {tail} }}")), Vec::<String>::new(), "{tail}");
+    }
+}
+
 /// A centre of mass or a force's point has lengths for coordinates: an angle unknown there put
 /// the body at so many radians, its mass counted in mass rad^2 beside the others' mass
 /// length^2, and the reduced inertia changed with the unit of length, without a word. The

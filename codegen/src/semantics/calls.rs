@@ -1,7 +1,7 @@
 //! Calls of built-in functions: checked and lowered from the table in [`super::builtins`].
 
 use super::builtins::{self, Builtin, HINTS, Kind, Lowering};
-use super::lower::{Lowerer, integer_exponent};
+use super::lower::{Lowerer, ScalarPair, integer_exponent};
 use super::symbols::Val;
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::suggest::similar;
@@ -85,6 +85,16 @@ impl Lowerer {
         let result = lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent);
         let range = SpanRange { start: func.span(), end: close };
         let show = || format!("{func}({})", args.iter().map(Expr::show).collect::<Vec<_>>().join(", "));
+        // `max(x, psi)` is a length or an angle by the input, as `x + psi` mixes the two: its
+        // arguments are judged as a sum's terms (a constant bound is of the other's kind).
+        if matches!(builtin.lowering, Lowering::Min | Lowering::Max | Lowering::Clamp)
+            && (self.in_equation || self.notes_sums)
+        {
+            for k in 1..args.len() {
+                let pair = ScalarPair::compared(&self.graph, range, &show(), (&args[0], &args[k]), vals[0], vals[k]);
+                self.scalar_pairs.extend(pair);
+            }
+        }
         self.finite(range, &show, &vals, result)
     }
 }

@@ -136,14 +136,14 @@ impl NamedLength {
     }
 }
 
-/// Two scalars a sum, a difference or an `eq` puts side by side, noted for the check that one
-/// is not an angle where the other is a length ([`super::polar`]).
+/// Two scalars a sum, a difference, an `eq` or a `min`, `max` or `clamp` puts side by side,
+/// noted for the check that one is not an angle where the other is a length ([`super::polar`]).
 pub(super) struct ScalarPair {
     /// The sum, difference or equation as written.
     pub(super) range: SpanRange,
     /// Its source.
     pub(super) shown: String,
-    /// What it does: "adds", "subtracts", "equates".
+    /// What it does: "adds", "subtracts", "equates", "compares".
     pub(super) verb: &'static str,
     /// Each side lowered, with its source.
     pub(super) sides: [(NodeId, String); 2],
@@ -174,6 +174,20 @@ impl ScalarPair {
             _ => format!("{lhs} == {rhs}"),
         };
         Some(ScalarPair { range, shown: short(&shown), verb, sides: [(a, lhs), (b, rhs)], factors })
+    }
+
+    /// Two arguments of `min`, `max` or `clamp` (the call written as `call`), which returns one
+    /// of them: a length or an angle by the input, whichever is smaller, as a sum of the two is
+    /// neither. Noted as [`ScalarPair::of`] notes a sum's terms.
+    pub(super) fn compared(
+        g: &Graph,
+        range: SpanRange,
+        call: &str,
+        args: (&Expr, &Expr),
+        l: Val,
+        r: Val,
+    ) -> Option<Self> {
+        Self::of(g, range, "compares", args, l, r).map(|p| ScalarPair { shown: short(call), ..p })
     }
 }
 

@@ -689,20 +689,29 @@ fn why_expression(lw: &Lowerer, angles: &mut Angles, n: NodeId) -> Option<String
     why
 }
 
-/// Reports every scalar sum, difference and `eq` noted in `lw` that puts an angle beside a
-/// length (`eq e: s == phi;` with `s` a slider's travel): its value changes with the unit of
-/// length. Run after [`coordinates`] and [`terms`], which find the lengths.
+/// Reports every scalar sum, difference, `eq` and `min`, `max` or `clamp` noted in `lw` that
+/// puts an angle beside a length (`eq e: s == phi;` with `s` a slider's travel): its value
+/// changes with the unit of length. Run after [`coordinates`] and [`terms`], which find the
+/// lengths.
 pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
     let pairs = std::mem::take(&mut lw.scalar_pairs);
     if angles.lengths.is_empty() {
         return;
     }
+    // The pairs of one call (`clamp(psi, lo, hi)`: `psi` with each bound) are one mistake,
+    // told once.
+    let mut told: Vec<(String, String)> = Vec::new();
     for p in pairs {
         if within_told_mixed(lw, angles, &p) {
             continue;
         }
+        let at = (p.shown.clone(), format!("{:?}", p.range.start));
+        if p.verb == "compares" && told.contains(&at) {
+            continue;
+        }
         if let Some(e) = angle_beside_length(lw, angles, &p) {
             lw.errors.push(e);
+            told.push(at);
         }
     }
 }
