@@ -1219,14 +1219,29 @@ fn a_semicolon_between_the_names_of_a_list_is_told_to_be_a_comma() {
         let e = errors(&format!("pub struct S {{ {decls} loop c: r @ phi == (x, 0) + l @ psi; }}"));
         assert_eq!(e, [says], "{decls}");
     }
-    // After another item, or before `==`, the word is still no item, with the list of items.
+    // After another item, or before `==` (see the next test), the word is no name of the list.
     let e =
         errors("pub struct S { params r, l; input phi; unknowns psi, x; loop c: r @ phi == (x, 0) + l @ psi; y = 1; }");
     assert!(e[0].starts_with("`y` does not start an item; an item starts with"), "{e:#?}");
     let e = errors(
         "pub struct S { params r, l; input phi; unknowns psi, x; x == r; loop c: r @ phi == (x, 0) + l @ psi; }",
     );
-    assert!(e[0].starts_with("`x` does not start an item; an item starts with"), "{e:#?}");
+    assert!(e[0].starts_with("`x` does not start an item: an equation starts with `eq`"), "{e:#?}");
+}
+
+/// An equation written without its keyword and name is told to take them; the list of items
+/// did not say which one it is.
+#[test]
+fn an_equation_without_its_keyword_is_told_to_take_it() {
+    let says = "does not start an item: an equation starts with `eq` and its name, `eq name: lhs == rhs;` \
+                (`loop name: lhs == rhs;` for vectors)";
+    for (tail, word) in [("u == 2 * x;", "u"), ("c: r @ phi == (x, 0) + l @ psi;", "c")] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} unknowns u; {tail} }}"));
+        assert_eq!(e, [format!("`{word}` {says}")], "{tail}");
+    }
+    // A misspelt keyword is still named, and an item without `==` gets the list.
+    let e = errors(&format!("pub struct S {{ {SLIDER} unknowns u; equation e: u == 2 * x; }}"));
+    assert!(e[0].starts_with("`equation` does not start an item (did you mean `eq`?)"), "{e:#?}");
 }
 
 /// A value after `:` (`psi: 0.5`, as YAML writes a key's value) is told to take `=`: "no type

@@ -104,7 +104,19 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
         let mut err = look.error();
         // Rust's own keywords too (`const`, `fn`): syn's message for them lists its peeks.
         if let Ok(id) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
-            err = syn::Error::new(id.span(), format!("`{id}` does not start an item{}; {ITEMS}", keyword_hint(&id)));
+            let hint = keyword_hint(&id);
+            err = if hint.is_empty() && equation_ahead(input) {
+                // `y == 2 * x;`: an equation without its keyword and name, not a misspelt item.
+                syn::Error::new(
+                    id.span(),
+                    format!(
+                        "`{id}` does not start an item: an equation starts with `eq` and its name, \
+                         `eq name: lhs == rhs;` (`loop name: lhs == rhs;` for vectors)"
+                    ),
+                )
+            } else {
+                syn::Error::new(id.span(), format!("`{id}` does not start an item{hint}; {ITEMS}"))
+            };
         }
         return Err(err);
     };
@@ -233,6 +245,26 @@ pub(super) fn list_continued(input: ParseStream, items: &mut [Item], errors: &mu
         skip_item(input);
     }
     Ok(true)
+}
+
+/// Whether the tokens up to the next `;` hold a `==` (outside brackets): an equation.
+fn equation_ahead(input: ParseStream) -> bool {
+    let mut cursor = input.cursor();
+    while let Some((tt, next)) = cursor.token_tree() {
+        match &tt {
+            proc_macro2::TokenTree::Punct(p) if p.as_char() == ';' => return false,
+            proc_macro2::TokenTree::Punct(p)
+                if p.as_char() == '='
+                    && p.spacing() == proc_macro2::Spacing::Joint
+                    && next.punct().is_some_and(|(q, _)| q.as_char() == '=') =>
+            {
+                return true;
+            }
+            _ => {}
+        }
+        cursor = next;
+    }
+    false
 }
 
 /// The words that start an item, for did-you-mean suggestions.
