@@ -1244,6 +1244,21 @@ fn an_equation_without_its_keyword_is_told_to_take_it() {
     assert!(e[0].starts_with("`equation` does not start an item (did you mean `eq`?)"), "{e:#?}");
 }
 
+/// Two values in parentheses without the `,` between them are a vector's components: "write
+/// `x * 0` for a product" did not name the `,`. A number and a name stay a product (`(2 pi)`).
+#[test]
+fn a_vector_without_its_comma_is_told_to_take_it() {
+    for (point, says) in [
+        ("(x 0)", "expected `,` between the components of a vector: write `(x, 0)`, or `x * 0` for a product"),
+        ("(1.5 2)", "expected `,` between the components of a vector: write `(1.5, 2)`, or `1.5 * 2` for a product"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} point p = {point}; }}"));
+        assert_eq!(e, [says], "{point}");
+    }
+    let e = errors(&format!("pub struct S {{ {SLIDER} output w = (2 pi) * x; }}"));
+    assert_eq!(e, ["expected an operator between `2` and `pi`: write `2 * pi` for a product"]);
+}
+
 /// A value after `:` (`psi: 0.5`, as YAML writes a key's value) is told to take `=`: "no type
 /// is needed: write `psi` alone" dropped the value. A type after it is still told to go.
 #[test]

@@ -295,6 +295,26 @@ fn vector_in_other_brackets(input: ParseStream) -> Option<syn::Error> {
     Some(input.error(format!("a vector is written in parentheses: write `({inside})`, not `{open}{inside}{close}`")))
 }
 
+/// The error for parentheses that hold a name or a number and then a number, `(x 0)`: a vector
+/// without the `,` between its components, which the message for a product without its `*`
+/// ("write `x * 0`") did not name. `None` for anything else (`(2 pi)` stays a product).
+fn vector_without_comma(content: ParseStream) -> Option<syn::Error> {
+    let (first, rest) = content.cursor().token_tree()?;
+    let (second, end) = rest.token_tree()?;
+    let value = matches!(&first, proc_macro2::TokenTree::Literal(_))
+        || matches!(&first, proc_macro2::TokenTree::Ident(id) if id != "deg");
+    if !end.eof() || !value || !matches!(second, proc_macro2::TokenTree::Literal(_)) {
+        return None;
+    }
+    Some(syn::Error::new(
+        second.span(),
+        format!(
+            "expected `,` between the components of a vector: write `({first}, {second})`, \
+             or `{first} * {second}` for a product"
+        ),
+    ))
+}
+
 /// The error for a number written without its leading `0` (`.5`, which Rust reads as a `.` and
 /// the number `5`), saying to write `0.5`. `None` for anything else.
 fn number_without_leading_digit(input: ParseStream) -> Option<syn::Error> {
@@ -650,6 +670,9 @@ impl Parser {
                 paren.span.join(),
                 "empty parentheses: write a value `(e)` or a vector `(x, y)`",
             ));
+        }
+        if let Some(e) = vector_without_comma(&content) {
+            return Err(e);
         }
         let first = self.expr(&content, 0)?;
         if content.is_empty() {
