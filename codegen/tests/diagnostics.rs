@@ -538,6 +538,20 @@ fn an_angle_beside_a_length_in_min_max_or_clamp_is_a_unit_mix() {
     }
 }
 
+/// `rot(phi, v)`, the vector and the angle the other way round, is one error that says to swap
+/// them; each argument was told it is of the wrong kind.
+#[test]
+fn the_arguments_of_rot_the_other_way_round_are_told_to_swap() {
+    let e = errors(&format!("pub struct S {{ {SLIDER} point p = rot(psi, (x, 0)); }}"));
+    assert_eq!(
+        e,
+        ["`rot` takes `rot(vector, angle)`: the arguments are the other way round, write `rot((x, 0), psi)`"]
+    );
+    // One argument of the wrong kind is still told so.
+    let e = errors(&format!("pub struct S {{ {SLIDER} point p = rot(psi, x); }}"));
+    assert!(e[0].starts_with("this argument is a scalar: `rot` takes a vector here"), "{e:#?}");
+}
+
 /// A centre of mass or a force's point has lengths for coordinates: an angle unknown there put
 /// the body at so many radians, its mass counted in mass rad^2 beside the others' mass
 /// length^2, and the reduced inertia changed with the unit of length, without a word. The

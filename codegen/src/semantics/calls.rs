@@ -44,6 +44,10 @@ impl Lowerer {
         let vals: Vec<Option<Val>> = args.iter().map(|a| self.lower(a)).collect();
         self.lengths = outer;
         let vals: Vec<Val> = vals.into_iter().collect::<Option<_>>()?;
+        if let Some(e) = swapped_arguments(builtin, func, args, &vals) {
+            self.errors.push(e);
+            return None;
+        }
         let mut ok = true;
         for ((v, a), (_, want)) in vals.iter().zip(args).zip(builtin.args) {
             let got = if matches!(v, Val::V(..)) { Kind::Vector } else { Kind::Scalar };
@@ -139,6 +143,24 @@ fn wrong_arity(b: &Builtin, args: &[Expr], close: Span) -> syn::Error {
             if args.len() == 1 { "was" } else { "were" }
         ),
     )
+}
+
+/// The error for the two arguments of a function that takes a vector and a scalar given the
+/// other way round, `rot(phi, v)`: one mistake, where each argument of the wrong kind was one.
+fn swapped_arguments(b: &Builtin, func: &Ident, args: &[Expr], vals: &[Val]) -> Option<syn::Error> {
+    let kind = |v: &Val| if matches!(v, Val::V(..)) { Kind::Vector } else { Kind::Scalar };
+    let ([(_, first), (_, second)], [a, c]) = (b.args, vals) else { return None };
+    if first == second || kind(a) != *second || kind(c) != *first {
+        return None;
+    }
+    let range = SpanRange { start: args[0].range().start, end: args[1].range().end };
+    Some(range.error(format!(
+        "`{}` takes `{}`: the arguments are the other way round, write `{func}({}, {})`",
+        b.name,
+        b.signature(),
+        args[1].show(),
+        args[0].show()
+    )))
 }
 
 fn wrong_kind(b: &Builtin, arg: &Expr, got: Kind) -> syn::Error {
