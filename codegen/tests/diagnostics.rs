@@ -552,6 +552,17 @@ fn the_arguments_of_rot_the_other_way_round_are_told_to_swap() {
     assert!(e[0].starts_with("this argument is a scalar: `rot` takes a vector here"), "{e:#?}");
 }
 
+/// `norm(x, y)`, the components of the vector without their parentheses, is told to write the
+/// vector.
+#[test]
+fn two_components_given_for_one_vector_are_told_to_make_the_vector() {
+    let e = errors(&format!("pub struct S {{ {SLIDER} output w = norm(x, l); }}"));
+    assert_eq!(
+        e,
+        ["`norm` takes 1 argument: `norm(vector)`, but 2 were given; for the vector of the two write `norm((x, l))`"]
+    );
+}
+
 /// A centre of mass or a force's point has lengths for coordinates: an angle unknown there put
 /// the body at so many radians, its mass counted in mass rad^2 beside the others' mass
 /// length^2, and the reduced inertia changed with the unit of length, without a word. The

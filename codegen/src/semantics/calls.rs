@@ -132,10 +132,17 @@ fn unsupported(func: &Ident) -> syn::Error {
 fn wrong_arity(b: &Builtin, args: &[Expr], close: Span) -> syn::Error {
     let arity = b.arity();
     let span = args.get(arity).map_or(close, |a| a.range().start);
+    // `norm(x, y)`: the two components of the vector it takes, without their parentheses.
+    let vector = match (b.args, args) {
+        ([(_, Kind::Vector)], [x, y]) => {
+            format!("; for the vector of the two write `{}(({}, {}))`", b.name, x.show(), y.show())
+        }
+        _ => String::new(),
+    };
     syn::Error::new(
         span,
         format!(
-            "`{}` takes {arity} argument{}: `{}`, but {} {} given",
+            "`{}` takes {arity} argument{}: `{}`, but {} {} given{vector}",
             b.name,
             if arity == 1 { "" } else { "s" },
             b.signature(),
