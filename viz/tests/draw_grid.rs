@@ -230,6 +230,12 @@ fn hand_made_grids_without_cells_are_errors() {
     all_empty.axes.iter_mut().for_each(Vec::clear);
     all_empty.cells.clear();
     assert!(matches!(page(&all_empty), Err(HtmlError::InvalidSetting(_))), "no axis has a value");
+    // An axis too many (the cells as many as the axes make): the page names the axes, not
+    // the inputs, which agree.
+    let mut extra = grid.clone();
+    extra.axes.push(vec![0.0]);
+    let Err(HtmlError::InvalidSetting(e)) = page(&extra) else { panic!("a grid of an axis too many made a page") };
+    assert!(e.contains("4 axes"), "{e}");
     // Every cell unreachable: the page shows the pivots and says so at every cell.
     let mut none = grid;
     none.cells.iter_mut().for_each(|c| *c = None);

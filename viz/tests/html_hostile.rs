@@ -119,3 +119,22 @@ fn a_duration_a_page_cannot_play_is_refused_as_an_animations_is() {
         assert!(html(&m, &drawing, &motion, &HtmlConfig::new("x").with_seconds(seconds)).is_ok(), "{seconds:e}");
     }
 }
+
+/// A motion whose output columns are not the mechanism's (its fields set by hand, or recorded
+/// from another mechanism of the same inputs) is refused naming the output columns: the
+/// message said the inputs differed and printed the same inputs twice.
+#[test]
+fn a_motion_of_other_output_columns_is_refused_naming_them() {
+    let (m, mut mo) = motion();
+    let drawing = DefaultDrawing::new(&m).into_drawing();
+    mo.outputs.truncate(1);
+    let Err(HtmlError::InvalidSetting(e)) = html(&m, &drawing, &mo, &HtmlConfig::new("x")) else {
+        panic!("a motion of other output columns made a page")
+    };
+    assert!(e.contains("output columns") && !e.contains("inputs"), "{e}");
+    mo.inputs = vec!["theta".into()];
+    let Err(HtmlError::InvalidSetting(e)) = html(&m, &drawing, &mo, &HtmlConfig::new("x")) else {
+        panic!("a motion of other inputs made a page")
+    };
+    assert!(e.contains("inputs [\"theta\"]"), "{e}");
+}

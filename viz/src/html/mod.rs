@@ -98,7 +98,7 @@ pub use config::{HtmlConfig, Readout, Value};
 pub use error::HtmlError;
 
 use crate::draw::{Drawing, GridMotion, Item, Motion, Pt};
-use kinloop_runtime::drawing::Drawable;
+use kinloop_runtime::drawing::{Columns, Drawable};
 use kinloop_runtime::{Compiled, Mechanism};
 
 /// The names of the joints of each item (the `point` outputs among its points).
@@ -164,13 +164,8 @@ pub(crate) fn html_marked<D: Drawable + ?Sized>(
 ) -> Result<String, HtmlError> {
     config.check()?;
     let columns = m.columns();
-    if motion.inputs != columns.inputs || motion.outputs != columns.outputs {
-        return Err(HtmlError::InvalidSetting(format!(
-            "the motion (inputs {:?}) is not a motion of the mechanism {} (inputs {:?})",
-            motion.inputs,
-            m.name(),
-            columns.inputs
-        )));
+    if let Some(err) = not_of("motion", motion, &columns, m.name()) {
+        return Err(err);
     }
     let ni = columns.inputs.len();
     let path = frames::path(motion);
@@ -291,10 +286,13 @@ pub fn html_grid_of<D: Drawable + ?Sized>(
     let columns = m.columns();
     let motion = &grid.motion;
     let counts = grid.counts();
-    if motion.inputs != columns.inputs || motion.outputs != columns.outputs || counts.len() != columns.inputs.len() {
+    if let Some(err) = not_of("grid", motion, &columns, m.name()) {
+        return Err(err);
+    }
+    if counts.len() != columns.inputs.len() {
         return Err(HtmlError::InvalidSetting(format!(
-            "the grid (inputs {:?}) is not a grid of the mechanism {} (inputs {:?})",
-            motion.inputs,
+            "the grid has {} axes, not one for each input of the mechanism {} (inputs {:?})",
+            counts.len(),
             m.name(),
             columns.inputs
         )));
@@ -340,4 +338,21 @@ pub fn html_grid_of<D: Drawable + ?Sized>(
         autoplay: config.autoplay,
         grid: Some(page::GridPart { counts, cells, inputs: columns.inputs.clone() }),
     })
+}
+
+/// The error for a `what` ("motion", "grid") recorded from another mechanism than `name`, whose
+/// columns are `columns`: it names the part that differs, the inputs or the output columns (a
+/// motion of the same inputs but other points was said to differ in its inputs, printing the
+/// same list twice); `None` where both agree.
+fn not_of(what: &str, motion: &Motion, columns: &Columns, name: &str) -> Option<HtmlError> {
+    let (part, had, wanted) = if motion.inputs != columns.inputs {
+        ("inputs", &motion.inputs, &columns.inputs)
+    } else if motion.outputs != columns.outputs {
+        ("output columns", &motion.outputs, &columns.outputs)
+    } else {
+        return None;
+    };
+    Some(HtmlError::InvalidSetting(format!(
+        "the {what} ({part} {had:?}) is not a {what} of the mechanism {name} ({part} {wanted:?})"
+    )))
 }
