@@ -145,6 +145,18 @@ fn bad_arguments_and_a_machine_without_inertia() {
     assert!(matches!(run(&model, &cfg, [0.0, 1.0], -1.0), Err(DynamicsError::BadValue { what: "end time", .. })));
     let bad_tol = cfg.with_ode(cfg.ode.with_tolerances(0.0, cfg.ode.atol));
     assert!(matches!(run(&model, &bad_tol, [0.0, 1.0], 1.0), Err(DynamicsError::BadValue { .. })));
+    // A relative tolerance within rounding, with an absolute one as small, no step can meet: the
+    // run stopped at its start as a singular motion ("is this a limit position?") or as a state
+    // too large to change ("start from a smaller value"). It is refused as a bad value, and one
+    // just above the bound runs.
+    for rtol in [1e-300, 1e-20, kinloop::dynamics::MIN_RTOL] {
+        let tiny = cfg.with_ode(cfg.ode.with_tolerances(rtol, 1e-300));
+        let err = run(&model, &tiny, [0.0, 1.0], 1.0).unwrap_err();
+        assert!(matches!(err, DynamicsError::BadValue { what: "relative tolerance", .. }), "{rtol:e}: {err}");
+        assert!(err.to_string().contains("2.2e-15"), "{rtol:e}: {err}");
+    }
+    let fine = cfg.with_ode(cfg.ode.with_tolerances(1.01 * kinloop::dynamics::MIN_RTOL, 1e-300));
+    assert!(run(&model, &fine, [0.0, 1.0], 0.1).is_ok());
     // No mass at all: the reduced inertia is zero, the motion undefined.
     let empty = Model::new();
     let err = run(&empty, &cfg, [0.0, 1.0], 1.0).unwrap_err();

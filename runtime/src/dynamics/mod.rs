@@ -66,7 +66,7 @@ pub use cycle::{Cycle, CyclePoint, Flywheel, InverseCycle, MIN_DELTA, SpeedLaw, 
 pub use error::DynamicsError;
 pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
-pub use ode::{DenseStep, OdeConfig, dopri5};
+pub use ode::{DenseStep, MIN_RTOL, OdeConfig, dopri5};
 pub use simulate::Simulation;
 pub use simulate_of::{RunConfig, Trajectory, simulate_of, simulate_steps_of};
 pub use sized::{Applied, DynamicsBuf, MassModelBuf};

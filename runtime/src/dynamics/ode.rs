@@ -16,7 +16,8 @@ use super::error::DynamicsError;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct OdeConfig {
-    /// Relative tolerance per step.
+    /// Relative tolerance per step: more than [`MIN_RTOL`] (ten units of rounding), as Hairer's
+    /// `DOPRI5` asks, so that a step's error can be told from the rounding of the state.
     pub rtol: f64,
     /// Absolute tolerance per step (in the units of the state).
     pub atol: f64,
@@ -25,6 +26,14 @@ pub struct OdeConfig {
     /// Most steps (accepted and rejected) before [`DynamicsError::TooManySteps`].
     pub max_steps: usize,
 }
+
+/// The smallest relative tolerance [`dopri5`] accepts (exclusive): ten units of rounding
+/// (Hairer, Nørsett and Wanner's `DOPRI5` refuses no more than that, "tolerances are too small").
+/// Below it, with an absolute tolerance as small, the error estimate is the rounding of the
+/// state, which no step shortens: a smooth motion was stopped at its start as a singular one
+/// ("is this a limit position?") or as a component too large to change ("start from a smaller
+/// value"), both at `1e-20` and `1e-300`.
+pub const MIN_RTOL: f64 = 10.0 * f64::EPSILON;
 
 impl Default for OdeConfig {
     fn default() -> Self {
@@ -401,8 +410,8 @@ fn check_config(t0: f64, t_end: f64, cfg: &OdeConfig) -> Result<(), DynamicsErro
             "must be farther from the start than the rounding of the time there (8 units in the last place)",
         );
     }
-    if !(cfg.rtol > 0.0 && cfg.rtol.is_finite()) {
-        return bad("relative tolerance", cfg.rtol, "must be positive and finite");
+    if !(cfg.rtol > MIN_RTOL && cfg.rtol.is_finite()) {
+        return bad("relative tolerance", cfg.rtol, "must be finite and more than 2.2e-15 (ten units of rounding)");
     }
     if !(cfg.atol > 0.0 && cfg.atol.is_finite()) {
         return bad("absolute tolerance", cfg.atol, "must be positive and finite");
