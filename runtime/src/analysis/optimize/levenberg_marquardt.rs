@@ -137,7 +137,10 @@ impl LevenbergMarquardt {
         let mut value = norm(&r);
         let mut history = vec![value];
         let mut iterations = 0;
-        let mut stalled = false;
+        // Without variables there is no step to take (the normal equations are empty, and
+        // nalgebra's LU of an empty matrix panicked): the start is the answer, converged or
+        // stalled by its residual.
+        let mut stalled = P == 0;
         while value > self.tol && evaluations < self.max_evaluations && !stalled {
             // Scaled (see `normal`): the damping floor below is then relative to the largest
             // column of the Jacobian, at any scale.
@@ -205,6 +208,17 @@ mod tests {
         let [x, y] = r.x;
         assert!((x * x + y * y - 4.0).abs() < 1e-9 && (x * y - 1.0).abs() < 1e-9);
         assert!(r.evaluations < 30);
+    }
+
+    /// A problem of no variables answers its start: converged where its residuals are within
+    /// the tolerance, stalled otherwise; the empty normal equations' LU panicked.
+    #[test]
+    fn no_variables_answer_the_start() {
+        let lm = LevenbergMarquardt::default();
+        let r = lm.minimize(|_: &[f64; 0]| Ok(([1.0, -2.0], [[], []])), []).unwrap();
+        assert_eq!((r.value, r.evaluations, r.termination), (5f64.sqrt(), 1, OptimizerStop::Stalled), "{r:?}");
+        let r = lm.minimize(|_: &[f64; 0]| Ok(([0.0], [[]])), []).unwrap();
+        assert_eq!((r.value, r.termination), (0.0, OptimizerStop::Converged), "{r:?}");
     }
 
     /// Residuals not finite at the start are an error, not a stalled search of value NaN.
