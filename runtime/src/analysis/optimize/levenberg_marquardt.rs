@@ -71,6 +71,11 @@ fn normal<const R: usize, const P: usize>(
     (a, g, ur / uj)
 }
 
+/// The first entry `(k, i)` of a Jacobian that is not finite.
+fn not_finite<const R: usize, const P: usize>(jac: &[[f64; P]; R]) -> Option<(usize, usize)> {
+    (0..R).flat_map(|k| (0..P).map(move |i| (k, i))).find(|&(k, i)| !jac[k][i].is_finite())
+}
+
 impl LevenbergMarquardt {
     /// Sets [`LevenbergMarquardt::tol`].
     pub fn with_tol(mut self, tol: f64) -> Self {
@@ -115,10 +120,10 @@ impl LevenbergMarquardt {
     }
 
     /// Minimises `|r(x)|^2` from `x0`; `f(x)` returns the residuals and their Jacobian
-    /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned, and so is a residual there
-    /// that is not finite (`InvalidArgument`); later errors, and residuals not finite, reject
-    /// the step. A configuration out of range ([`LevenbergMarquardt::validate`]) is an
-    /// `InvalidArgument` before any evaluation.
+    /// `J[k][i] = d r_k / d x_i`. An error at `x0` is returned, and so is a residual or an
+    /// entry of the Jacobian there that is not finite (`InvalidArgument`); later errors, and
+    /// residuals or Jacobians not finite, reject the step. A configuration out of range
+    /// ([`LevenbergMarquardt::validate`]) is an `InvalidArgument` before any evaluation.
     pub fn minimize<const R: usize, const P: usize>(
         &self,
         mut f: impl FnMut(&[f64; P]) -> Result<([f64; R], [[f64; P]; R]), Error>,
@@ -130,6 +135,14 @@ impl LevenbergMarquardt {
         // value of a stalled search.
         if let Some(k) = r.iter().position(|v| !v.is_finite()) {
             return Err(Error::InvalidArgument(format!("residual {k} at the start {x0:?} is {}", r[k])));
+        }
+        // A Jacobian not finite makes every step NaN, each rejected: the search was reported
+        // stalled at its start, as if the residuals could not be lowered.
+        if let Some((k, i)) = not_finite(&jac) {
+            return Err(Error::InvalidArgument(format!(
+                "the Jacobian's entry d r_{k} / d x_{i} at the start {x0:?} is {}",
+                jac[k][i]
+            )));
         }
         let mut x = x0;
         let mut evaluations = 1;
@@ -166,7 +179,7 @@ impl LevenbergMarquardt {
                 }
                 evaluations += 1;
                 match f(&trial) {
-                    Ok((rt, jt)) if norm(&rt) < value => {
+                    Ok((rt, jt)) if norm(&rt) < value && not_finite(&jt).is_none() => {
                         value = norm(&rt);
                         (x, r, jac) = (trial, rt, jt);
                         lambda = (lambda * 0.3).max(1e-12);
@@ -229,6 +242,23 @@ mod tests {
             let r = LevenbergMarquardt::default().minimize(f, [0.0]);
             assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("residual 1")), "{r:?}");
         }
+    }
+
+    /// A Jacobian not finite at the start is an error naming its entry, not a search stalled
+    /// there; one not finite later rejects the step that reached it.
+    #[test]
+    fn jacobians_not_finite_are_an_error_at_the_start_and_rejected_later() {
+        for bad in [f64::NAN, f64::INFINITY] {
+            let f = |v: &[f64; 2]| Ok(([v[0] - 1.0, v[1]], [[1.0, 0.0], [0.0, bad]]));
+            let r = LevenbergMarquardt::default().minimize(f, [0.0, 0.5]);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("d r_1 / d x_1")), "{r:?}");
+        }
+        // x - 1 = 0 with a Jacobian that is NaN about x = 1.002, where the first step from 3
+        // lands (2 / 1.001 at the initial damping): it is rejected, and a more damped one
+        // converges. Accepted, it left a search stalled there.
+        let f = |v: &[f64; 1]| Ok(([v[0] - 1.0], [[if (v[0] - 1.002).abs() < 5e-4 { f64::NAN } else { 1.0 }]]));
+        let r = LevenbergMarquardt::default().minimize(f, [3.0]).unwrap();
+        assert!(r.converged() && r.x[0].is_finite(), "{r:?}");
     }
 
     /// Settings out of range are errors naming them; a NaN tolerance or damping stopped the
