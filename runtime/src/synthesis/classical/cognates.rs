@@ -56,10 +56,11 @@ const COLLAPSED: f64 = 1e-12;
 /// does not keep a body's angle, and its `body_angle` is `0`.
 ///
 /// Errors ([`ClassicalError`]): `f` without a coupler point (a function generator); a value
-/// that is not finite; a link length that is not positive, or a coupler of no length against
-/// the others; angle lists of different lengths; the coupler point on the joint `B` or `C`
-/// (within `1e-12` of the four-bar's size), where its path is a circle about `A` or `D` and a
-/// cognate collapses.
+/// that is not finite; a link length that is not positive; angle lists of different lengths; a
+/// coupler, input or output link of no length, or fixed pivots that coincide (within `1e-12` of
+/// the four-bar's size), where the four-bar moves only as one body, if at all; the coupler point
+/// on the joint `B` or `C` (as near), where its path is a circle about `A` or `D` and a cognate
+/// collapses.
 ///
 /// ```
 /// use kinloop_runtime::Vec2;
@@ -136,6 +137,23 @@ pub fn cognates(f: &FourBar) -> Result<[FourBar; 2], ClassicalError> {
             "the coupler's length {coupler} is no length against the four-bar's size {size}: the coupler point's \
              place on it is not defined"
         )));
+    }
+    // A crank of no length holds its joint on its fixed pivot, and the four-bar cannot move (the
+    // other links and the ground make a rigid triangle): its coupler point traces no curve, and
+    // a cognate's link of `k` or `1 - k` times that length has none either (the first cognate's
+    // coupler, which `cognates` itself refuses, or the second's output link). Fixed pivots
+    // that coincide turn the whole four-bar about them as one body, the point's path a circle,
+    // and both cognates' ground has no length.
+    let pivots = (f.output_pivot - f.input_pivot).norm();
+    for (what, length) in
+        [("input link", input), ("output link", output), ("ground (between the fixed pivots)", pivots)]
+    {
+        if length.abs() <= tiny {
+            return Err(ClassicalError::Degenerate(format!(
+                "the {what} has a length of {length}, no length against the four-bar's size {size}: the \
+                 four-bar cannot move but as one body, and a cognate collapses"
+            )));
+        }
     }
     // `P = B + k (C - B)`: `k` the coupler point in the coupler's own frame.
     let k = Complex::from_polar(distance / coupler, angle);
@@ -373,6 +391,12 @@ mod tests {
         refused(&|f| f.coupler_point = Some((4.0 + 1e-14, 1e-16)), "on the joint C");
         refused(&|f| f.links.coupler = 0.0, "the coupler link's length is 0");
         refused(&|f| f.links.input = -1.5, "the input link's length is -1.5");
+        // A crank of no length (the four-bar immobile), or fixed pivots that coincide: the
+        // cognates had a link of no length (a coupler `cognates` refuses) or no ground.
+        refused(&|f| f.links.coupler = 1e-13, "the coupler's length 0.0000000000001 is no length");
+        refused(&|f| f.links.input = 1e-13, "the input link has a length of");
+        refused(&|f| f.links.output = 1e-13, "the output link has a length of");
+        refused(&|f| f.output_pivot = f.input_pivot, "the ground (between the fixed pivots) has a length of 0");
         refused(&|f| f.links.output = f64::NAN, "the output link's length is not finite");
         refused(&|f| f.input_pivot.y = f64::INFINITY, "the input pivot's y is not finite");
         refused(&|f| f.couplers[1] = f64::NAN, "the coupler angle at point 1 is not finite");
