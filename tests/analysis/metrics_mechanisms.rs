@@ -94,6 +94,20 @@ proptest! {
     }
 }
 
+/// The transmission angle is between two link angles: a column that is a length (a point's
+/// coordinate), or one angle column given twice, is refused naming it. Both gave a range as `Ok`
+/// (the latter with every sample a dead point).
+#[test]
+fn a_transmission_angle_of_a_length_or_of_one_angle_twice_is_refused() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let turn = Sampled::sweep(&m, 0.0, TAU, 37, m.guess(0.0)).unwrap();
+    let refused = |e: kinloop::Error, says: &str| assert!(e.to_string().contains(says), "{e}");
+    refused(turn.transmission(FourBar::COL.pc.x, FourBar::COL.gamma).unwrap_err(), "`pc.x` of `FourBar` is a length");
+    refused(turn.transmission(FourBar::COL.beta, "pc.y").unwrap_err(), "`pc.y` of `FourBar` is a length");
+    refused(turn.transmission(FourBar::COL.gamma, FourBar::COL.gamma).unwrap_err(), "both are `gamma`");
+    assert!(turn.transmission(FourBar::COL.beta, FourBar::COL.gamma).is_ok());
+}
+
 /// A fixed seed: the same four-bars on every run. Of the 79 drawn, 15 are rejected (within 0.02
 /// of a change point, where the sweep passes a crossing rather than stopping); of the 64 cases,
 /// 14 cannot close (the classification's error checked), 36 rock and 14 turn.

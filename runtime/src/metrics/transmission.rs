@@ -3,9 +3,11 @@
 //! designers keep its minimum above about 40 degrees.
 
 use crate::Kernel;
+use crate::analysis::column::{column_kind, column_name};
 use crate::analysis::extremes::{Corner, extremes_across};
 use crate::analysis::{ColumnOf, Jet, SampledOf, bracketed_root};
 use crate::error::Error;
+use crate::kinds::QuantityKind;
 use crate::paths::sweep::MAX_TURNS;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -171,12 +173,39 @@ impl<K: Kernel> SampledOf<K> {
     /// The transmission angle's range ([`transmission_range`]) over a sampled sweep, the coupler
     /// and follower angles given by their columns (`Name::COL.beta`, `Name::COL.gamma`, or their
     /// names), as functions of the path parameter (the input, for one input).
+    ///
+    /// Errors (`InvalidArgument`): a column the mechanism knows is not an angle (a length, a
+    /// ratio: `Name::COL.p.x`), or the same column twice; those of [`transmission_range`].
     pub fn transmission(
         &self,
         coupler: impl ColumnOf<K>,
         follower: impl ColumnOf<K>,
     ) -> Result<TransmissionRange, Error> {
         let (coupler, follower) = (coupler.resolve(self.kernel())?, follower.resolve(self.kernel())?);
+        // Of a length the "angle" was a number of length units, and of one column twice the
+        // relative angle zero: either gave a range as `Ok` (every sample a dead point for the
+        // latter). A column of a kind not inferred may be an angle, and is taken as one.
+        let k = self.kernel();
+        for c in [coupler, follower] {
+            let kind = column_kind(k, c);
+            if matches!(kind, QuantityKind::Length | QuantityKind::Dimensionless) {
+                return Err(Error::InvalidArgument(format!(
+                    "the transmission angle is between two link angles, and `{}` of `{}` is {}: give the \
+                     coupler's and the follower's angle columns",
+                    column_name(k, c),
+                    k.name(),
+                    if kind == QuantityKind::Length { "a length" } else { "a dimensionless number" }
+                )));
+            }
+        }
+        if coupler == follower {
+            return Err(Error::InvalidArgument(format!(
+                "the transmission angle is between two link angles, and both are `{}` of `{}`: give the coupler's \
+                 and the follower's angle columns",
+                column_name(k, coupler),
+                k.name()
+            )));
+        }
         // Between the samples as `extremes` looks: the samples alone missed a maximum between
         // two of them (a turn in four samples gave 1.551 for pi / 2); across the singular
         // crossings the sweep passed as `extremes` does too (the search stepped into a change
