@@ -30,6 +30,11 @@ use std::f64::consts::PI;
 /// is on a joint, and its path a circle.
 const COLLAPSED: f64 = 1e-12;
 
+/// The largest difference, as a fraction of the four-bar's size, between its ground length and
+/// the distance of its fixed pivots: their roundings agree far closer (a length typed to nine
+/// digits beside pivots typed to nine passes), a different ground does not.
+const GROUND_AGREES: f64 = 1e-9;
+
 /// The two cognates of the four-bar `f`'s coupler point (the Roberts–Chebyshev theorem): the
 /// four-bars whose coupler points trace the same curve as `f`'s, found in closed form from `f`'s
 /// pivots, links and coupler point. The first turns about `f`'s input pivot `A`, the second about
@@ -56,11 +61,12 @@ const COLLAPSED: f64 = 1e-12;
 /// does not keep a body's angle, and its `body_angle` is `0`.
 ///
 /// Errors ([`ClassicalError`]): `f` without a coupler point (a function generator); a value
-/// that is not finite; a link length that is not positive; angle lists of different lengths; a
-/// coupler, input or output link of no length, or fixed pivots that coincide (within `1e-12` of
-/// the four-bar's size), where the four-bar moves only as one body, if at all; the coupler point
-/// on the joint `B` or `C` (as near), where its path is a circle about `A` or `D` and a cognate
-/// collapses.
+/// that is not finite; a link length that is not positive; a ground length that is not the
+/// fixed pivots' distance (within `1e-9` of the four-bar's size); angle lists of different
+/// lengths; a coupler, input or output link of no length, or fixed pivots that coincide (within
+/// `1e-12` of the four-bar's size), where the four-bar moves only as one body, if at all; the
+/// coupler point on the joint `B` or `C` (as near), where its path is a circle about `A` or `D`
+/// and a cognate collapses.
 ///
 /// ```
 /// use kinloop_runtime::Vec2;
@@ -154,6 +160,14 @@ pub fn cognates(f: &FourBar) -> Result<[FourBar; 2], ClassicalError> {
                  four-bar cannot move but as one body, and a cognate collapses"
             )));
         }
+    }
+    // The pivots place the ground, and `links.ground` says its length again: read only here,
+    // so that a four-bar described two ways is not answered for one of them in silence.
+    if (ground - pivots).abs() > GROUND_AGREES * size {
+        return Err(ClassicalError::Degenerate(format!(
+            "the ground length {ground} is not the distance {pivots} between the fixed pivots: give the four-bar's \
+             `links.ground` as `(output_pivot - input_pivot).norm()`"
+        )));
     }
     // `P = B + k (C - B)`: `k` the coupler point in the coupler's own frame.
     let k = Complex::from_polar(distance / coupler, angle);
@@ -397,6 +411,7 @@ mod tests {
         refused(&|f| f.links.input = 1e-13, "the input link has a length of");
         refused(&|f| f.links.output = 1e-13, "the output link has a length of");
         refused(&|f| f.output_pivot = f.input_pivot, "the ground (between the fixed pivots) has a length of 0");
+        refused(&|f| f.links.ground = 4.1, "the ground length 4.1 is not the distance 4 between the fixed pivots");
         refused(&|f| f.links.output = f64::NAN, "the output link's length is not finite");
         refused(&|f| f.input_pivot.y = f64::INFINITY, "the input pivot's y is not finite");
         refused(&|f| f.couplers[1] = f64::NAN, "the coupler angle at point 1 is not finite");
