@@ -214,9 +214,12 @@ fn not_a_column(design: &Design, mechanism: &str) -> Result<(), Failed> {
     own_columns::check(&own, mechanism, design.variables().iter().map(|v| ("parameter", v.name.as_str())))
 }
 
-/// `lo..hi` as two finite numbers, lower first.
-fn bounds(spec: &str, what: &str) -> Result<(f64, f64), Failed> {
-    let not_bounds = format!("{what} `{spec}` is not `lo..hi` with finite lo <= hi");
+/// `lo..hi` as two finite numbers, lower first (`lo <= hi`; strictly lower where `strict`, as a
+/// range of inputs needs, whose refusal says so: `2..1` was told `lo <= hi`, and then `1..1`
+/// that it is empty).
+fn bounds(spec: &str, what: &str, strict: bool) -> Result<(f64, f64), Failed> {
+    let order = if strict { "<" } else { "<=" };
+    let not_bounds = format!("{what} `{spec}` is not `lo..hi` with finite lo {order} hi");
     let Some((lo, hi)) = spec.split_once("..") else {
         return Err(exit::usage(not_bounds));
     };
@@ -228,7 +231,7 @@ fn bounds(spec: &str, what: &str) -> Result<(f64, f64), Failed> {
         )));
     }
     match (number(lo), number(hi)) {
-        (Ok(lo), Ok(hi)) if lo.is_finite() && hi.is_finite() && lo <= hi => Ok((lo, hi)),
+        (Ok(lo), Ok(hi)) if lo.is_finite() && hi.is_finite() && (lo < hi || (!strict && lo == hi)) => Ok((lo, hi)),
         (Err(e), _) | (_, Err(e)) => Err(exit::usage(format!("{not_bounds}: {e}"))),
         _ => Err(exit::usage(not_bounds)),
     }
@@ -246,7 +249,7 @@ fn design(vary: &str) -> Result<Design, Failed> {
         if d.variables().iter().any(|v| v.name == name) {
             return Err(exit::usage(format!("`{name}` is given twice in --vary: give each design variable once")));
         }
-        let (lo, hi) = bounds(range, &format!("the range of `{name}` in --vary"))?;
+        let (lo, hi) = bounds(range, &format!("the range of `{name}` in --vary"), false)?;
         d = d.var(name, lo, hi);
     }
     if d.variables().is_empty() {
@@ -370,11 +373,8 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
 /// `--range lo..hi` of an input of kind `kind` in the library's units (an angle's in radians,
 /// given in degrees with `deg`).
 fn range_in(r: &str, kind: QuantityKind, deg: bool) -> Result<(f64, f64), Failed> {
-    let (lo, hi) = bounds(r, "--range")?;
-    // Targets along no range at all: every candidate would be rejected.
-    if lo == hi {
-        return Err(exit::usage(format!("--range `{r}` is empty: give lo < hi")));
-    }
+    // Targets along no range at all (`1..1`): every candidate would be rejected.
+    let (lo, hi) = bounds(r, "--range", true)?;
     // Candidates are verified by sweeps between the targets' inputs, which refuse a range of
     // more turns than they follow: every candidate would be rejected for "no assembly" instead.
     // Counted in the unit typed, before the conversion (which refuses ends beyond a solve's

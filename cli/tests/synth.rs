@@ -332,12 +332,16 @@ fn bad_targets_files_are_usage_errors_naming_the_file_and_line() {
 fn an_empty_range_is_a_usage_error() {
     let targets = untimed_targets("synth_untimed.csv");
     let four_bar = shipped("coupler_four_bar.kl");
-    let args = ["synth", &four_bar, "--targets", &targets, "--path", "p", "--vary", "a=1..2", "--range", "1..1"];
-    let o = kinloop(&args);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.contains("--range `1..1`"), "{err}");
-    assert!(o.stdout.is_empty());
+    // Equal ends and reversed ones say the same: a range asks for lo < hi (`2..1` was told that
+    // lo <= hi would do).
+    for range in ["1..1", "2..1"] {
+        let args = ["synth", &four_bar, "--targets", &targets, "--path", "p", "--vary", "a=1..2", "--range", range];
+        let o = kinloop(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(&format!("--range `{range}` is not `lo..hi` with finite lo < hi")), "{err}");
+        assert!(o.stdout.is_empty());
+    }
 }
 
 /// `--range` with targets that give their own inputs (`phi,x,y`) is a usage error: it was
