@@ -59,7 +59,8 @@
 //!   phi;` with `s` a slider's travel is a compile error that says to write `s == r * phi`, and
 //!   so is `x + psi` in a `loop`, `let`, `point` or `output` alike (a reported value that mixes
 //!   the two changes with the unit of length as much as an equation does), and `max(x, psi)`,
-//!   which is a length or an angle by the input.
+//!   which is a length or an angle by the input, and `atan2(x, psi)`, `hypot(x, psi)` and
+//!   `wrap(x, psi)`, which change with the unit of length as the sum does.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

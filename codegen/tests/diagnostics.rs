@@ -538,6 +538,37 @@ fn an_angle_beside_a_length_in_min_max_or_clamp_is_a_unit_mix() {
     }
 }
 
+/// `atan2`, `hypot` and `wrap` of an angle and a length change with the unit of length as their
+/// sum does: the same error, "combines". Of one kind, or with a constant, they stay as written.
+#[test]
+fn an_angle_beside_a_length_in_atan2_hypot_or_wrap_is_a_unit_mix() {
+    for (tail, shown) in [
+        ("output w = atan2(x, psi);", "atan2(x, psi)"),
+        ("output w = hypot(psi, x);", "hypot(psi, x)"),
+        ("output w = wrap(x, psi);", "wrap(x, psi)"),
+        ("eq e: u == atan2(phi, x);", "atan2(phi, x)"),
+    ] {
+        let e = errors(&format!(
+            "pub struct S {{ {SLIDER} {} {tail} }}",
+            if tail.starts_with("eq") { "unknowns u;" } else { "" }
+        ));
+        assert_eq!(e.len(), 1, "{tail}: {e:#?}");
+        assert!(
+            e[0].starts_with(&format!("`{shown}` combines an angle and a length, so its value would change")),
+            "{e:#?}"
+        );
+    }
+    for tail in [
+        "output w = atan2(x, l);",
+        "output w = hypot(psi, 0.5);",
+        "output w = wrap(psi, 2 * pi);",
+        "output w = atan2(sin(psi), cos(psi));",
+        "output w = hypot(phi, psi);",
+    ] {
+        assert_eq!(errors(&format!("pub struct S {{ {SLIDER} {tail} }}")), Vec::<String>::new(), "{tail}");
+    }
+}
+
 /// `rot(phi, v)`, the vector and the angle the other way round, is one error that says to swap
 /// them; each argument was told it is of the wrong kind.
 #[test]

@@ -89,13 +89,20 @@ impl Lowerer {
         let result = lower_builtin(&mut self.graph, builtin.lowering, &vals, exponent);
         let range = SpanRange { start: func.span(), end: close };
         let show = || format!("{func}({})", args.iter().map(Expr::show).collect::<Vec<_>>().join(", "));
-        // `max(x, psi)` is a length or an angle by the input, as `x + psi` mixes the two: its
-        // arguments are judged as a sum's terms (a constant bound is of the other's kind).
-        if matches!(builtin.lowering, Lowering::Min | Lowering::Max | Lowering::Clamp)
-            && (self.in_equation || self.notes_sums)
-        {
+        // `max(x, psi)` is a length or an angle by the input, and `atan2(x, psi)`,
+        // `hypot(x, psi)` and `wrap(x, psi)` change with the unit of length, as `x + psi` mixes
+        // the two: their arguments are judged as a sum's terms (a constant is of the other's
+        // kind).
+        let verb = match builtin.lowering {
+            Lowering::Min | Lowering::Max | Lowering::Clamp => Some("compares"),
+            Lowering::Atan2 | Lowering::Hypot | Lowering::Wrap => Some("combines"),
+            _ => None,
+        };
+        if let Some(verb) = verb.filter(|_| self.in_equation || self.notes_sums) {
+            let shown = show();
             for k in 1..args.len() {
-                let pair = ScalarPair::compared(&self.graph, range, &show(), (&args[0], &args[k]), vals[0], vals[k]);
+                let pair =
+                    ScalarPair::compared(&self.graph, (range, &shown, verb), (&args[0], &args[k]), vals[0], vals[k]);
                 self.scalar_pairs.extend(pair);
             }
         }

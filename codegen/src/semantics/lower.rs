@@ -143,7 +143,7 @@ pub(super) struct ScalarPair {
     pub(super) range: SpanRange,
     /// Its source.
     pub(super) shown: String,
-    /// What it does: "adds", "subtracts", "equates", "compares".
+    /// What it does: "adds", "subtracts", "equates", "compares", "combines".
     pub(super) verb: &'static str,
     /// Each side lowered, with its source.
     pub(super) sides: [(NodeId, String); 2],
@@ -176,18 +176,18 @@ impl ScalarPair {
         Some(ScalarPair { range, shown: short(&shown), verb, sides: [(a, lhs), (b, rhs)], factors })
     }
 
-    /// Two arguments of `min`, `max` or `clamp` (the call written as `call`), which returns one
-    /// of them: a length or an angle by the input, whichever is smaller, as a sum of the two is
-    /// neither. Noted as [`ScalarPair::of`] notes a sum's terms.
+    /// Two arguments of a function of two quantities of one kind (the call written as `call`,
+    /// doing `verb`): `min`, `max` or `clamp`, which return one of them, a length or an angle by
+    /// the input ("compares"); `atan2`, `hypot` and `wrap`, whose value is a length's or an
+    /// angle's only where both are ("combines"). Noted as [`ScalarPair::of`] notes a sum's terms.
     pub(super) fn compared(
         g: &Graph,
-        range: SpanRange,
-        call: &str,
+        (range, call, verb): (SpanRange, &str, &'static str),
         args: (&Expr, &Expr),
         l: Val,
         r: Val,
     ) -> Option<Self> {
-        Self::of(g, range, "compares", args, l, r).map(|p| ScalarPair { shown: short(call), ..p })
+        Self::of(g, range, verb, args, l, r).map(|p| ScalarPair { shown: short(call), ..p })
     }
 }
 
