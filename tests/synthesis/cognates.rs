@@ -47,9 +47,9 @@ kinloop::mechanism! {
 /// cognate's over the same input, the cognate started at the angles it reports there; the
 /// largest distance between the original's point and a cognate's, relative to the size.
 fn largest_gap(f: &FourBar, turns: f64, samples: usize) -> [f64; 2] {
-    let (e, alpha) = f.coupler_point.unwrap();
-    let (a, d, l) = (f.input_pivot, f.output_pivot, f.links);
-    let original = Original { ax: a.x, ay: a.y, dx: d.x, dy: d.y, a: l.input, b: l.coupler, c: l.output, e, alpha };
+    let [ax, ay, dx, dy, a, b, c, e, alpha] = params_of(f);
+    let original = Original { ax, ay, dx, dy, a, b, c, e, alpha };
+    let l = f.links;
     let th = f.ground_angle;
     let from = f.inputs[0] + th;
     let to = from + turns * TAU;
@@ -63,40 +63,26 @@ fn largest_gap(f: &FourBar, turns: f64, samples: usize) -> [f64; 2] {
     };
     // The first cognate's coupler turns as the original's input: `shift` is its coupler's
     // absolute angle less the original's input's, at the first pose (the same at every pose).
-    let (a1, o1, l1, g1) = (first.input_pivot, first.output_pivot, first.links, first.ground_angle);
-    let (e1, alpha1) = first.coupler_point.unwrap();
-    let by_coupler = ByCoupler {
-        ax: a1.x,
-        ay: a1.y,
-        dx: o1.x,
-        dy: o1.y,
-        a: l1.input,
-        b: l1.coupler,
-        c: l1.output,
-        e: e1,
-        alpha: alpha1,
-        shift: first.couplers[0] + g1 - from,
-    };
+    let g1 = first.ground_angle;
+    let [ax, ay, dx, dy, a, b, c, e, alpha] = params_of(&first);
+    let by_coupler = ByCoupler { ax, ay, dx, dy, a, b, c, e, alpha, shift: first.couplers[0] + g1 - from };
     let start = ByCouplerUnknowns { q_in: first.inputs[0] + g1, q_out: first.outputs[0] + g1 };
     let along_first = by_coupler.sweep(from, to, samples, &start).unwrap().map(|s| s.unwrap().out.p);
     // The second's output link turns as the original's input.
-    let (a2, o2, l2, g2) = (second.input_pivot, second.output_pivot, second.links, second.ground_angle);
-    let (e2, alpha2) = second.coupler_point.unwrap();
-    let by_output = ByOutput {
-        ax: a2.x,
-        ay: a2.y,
-        dx: o2.x,
-        dy: o2.y,
-        a: l2.input,
-        b: l2.coupler,
-        c: l2.output,
-        e: e2,
-        alpha: alpha2,
-        shift: second.outputs[0] + g2 - from,
-    };
+    let g2 = second.ground_angle;
+    let [ax, ay, dx, dy, a, b, c, e, alpha] = params_of(&second);
+    let by_output = ByOutput { ax, ay, dx, dy, a, b, c, e, alpha, shift: second.outputs[0] + g2 - from };
     let start = ByOutputUnknowns { q_in: second.inputs[0] + g2, q_cp: second.couplers[0] + g2 };
     let along_second = by_output.sweep(from, to, samples, &start).unwrap().map(|s| s.unwrap().out.p);
     [gap(along_first.collect()), gap(along_second.collect())]
+}
+
+/// A four-bar's parameters as the declarations take them: its fixed pivots, its links and its
+/// coupler point.
+fn params_of(g: &FourBar) -> [f64; 9] {
+    let (a, o, l) = (g.input_pivot, g.output_pivot, g.links);
+    let (e, alpha) = g.coupler_point.unwrap();
+    [a.x, a.y, o.x, o.y, l.input, l.coupler, l.output, e, alpha]
 }
 
 /// A four-bar at the first pose only, its coupler and output angles by intersecting circles on
