@@ -689,10 +689,10 @@ fn why_expression(lw: &Lowerer, angles: &mut Angles, n: NodeId) -> Option<String
     why
 }
 
-/// Reports every scalar sum, difference, `eq` and `min`, `max` or `clamp` noted in `lw` that
-/// puts an angle beside a length (`eq e: s == phi;` with `s` a slider's travel): its value
-/// changes with the unit of length. Run after [`coordinates`] and [`terms`], which find the
-/// lengths.
+/// Reports every scalar sum, difference, `eq`, and call of `min`, `max`, `clamp`, `atan2`,
+/// `hypot` or `wrap` noted in `lw` that puts an angle beside a length (`eq e: s == phi;` with
+/// `s` a slider's travel): its value changes with the unit of length. Run after
+/// [`coordinates`] and [`terms`], which find the lengths.
 pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
     let pairs = std::mem::take(&mut lw.scalar_pairs);
     if angles.lengths.is_empty() {

@@ -5,6 +5,7 @@
 use super::Imbalance;
 use crate::front::expr::SpanRange;
 use crate::front::syntax::Errors;
+use crate::graph::dag::Leaf;
 use crate::semantics::model::Model;
 use std::collections::BTreeSet;
 
@@ -136,8 +137,9 @@ fn over_part(model: &Model, dm: &Imbalance, involved: &[usize], msg: &mut String
         let surplus = involved.len().saturating_sub(dm.over_unknowns.len()).max(1);
         // Only what the part uses can become an unknown: equations of constants and inputs
         // (`eq e: x == 1; eq f: x == 2;`) have no parameter to offer.
-        let params = parameters_used(model, &involved) >= surplus;
-        let what = match (inputs_may_become_unknowns(model, &involved, surplus), params) {
+        let leaves = leaves_of_equations(model, &involved);
+        let params = leaves.iter().filter(|l| matches!(l, Leaf::Param(_))).count() >= surplus;
+        let what = match (inputs_may_become_unknowns(model, &leaves, surplus), params) {
             (true, true) => Some(plural(surplus, "parameter or input", "parameters or inputs")),
             (true, false) => Some(plural(surplus, "input", "inputs")),
             (false, true) => Some(plural(surplus, "parameter", "parameters")),
@@ -188,21 +190,18 @@ fn empty_help(model: &Model, empty: &BTreeSet<usize>) -> String {
 }
 
 /// Whether turning `surplus` inputs into unknowns is a fix to offer: the equations depend on an
-/// input, and one input at least is left to drive the mechanism. A quantity declared an input
-/// that the loops determine (`inputs phi, x;` for a slider's `x`) over-determines them so.
-fn inputs_may_become_unknowns(model: &Model, equations: &BTreeSet<usize>, surplus: usize) -> bool {
-    if model.inputs.len() <= surplus {
-        return false;
-    }
-    let residuals: Vec<_> = equations.iter().map(|&e| model.equations[e].residual).collect();
-    model.graph.leaves_of(&residuals).iter().any(|l| matches!(l, crate::graph::dag::Leaf::Input(_)))
+/// input (one of their `leaves`), and one input at least is left to drive the mechanism. A
+/// quantity declared an input that the loops determine (`inputs phi, x;` for a slider's `x`)
+/// over-determines them so.
+fn inputs_may_become_unknowns(model: &Model, leaves: &[Leaf], surplus: usize) -> bool {
+    model.inputs.len() > surplus && leaves.iter().any(|l| matches!(l, Leaf::Input(_)))
 }
 
-/// How many parameters `equations` depend on.
-fn parameters_used(model: &Model, equations: &BTreeSet<usize>) -> usize {
+/// The leaves (parameters, inputs, unknowns) the residuals of `equations` depend on: what an
+/// over-determined part could turn into unknowns.
+fn leaves_of_equations(model: &Model, equations: &BTreeSet<usize>) -> Vec<Leaf> {
     let residuals: Vec<_> = equations.iter().map(|&e| model.equations[e].residual).collect();
-    let leaves = model.graph.leaves_of(&residuals);
-    leaves.iter().filter(|l| matches!(l, crate::graph::dag::Leaf::Param(_))).count()
+    model.graph.leaves_of(&residuals)
 }
 
 /// Describes the under-determined part in `msg` and adds its help lines. `involved`: the

@@ -154,7 +154,7 @@ pub fn cognates(f: &FourBar) -> Result<[FourBar; 2], ClassicalError> {
     for (what, length) in
         [("input link", input), ("output link", output), ("ground (between the fixed pivots)", pivots)]
     {
-        if length.abs() <= tiny {
+        if length <= tiny {
             return Err(ClassicalError::Degenerate(format!(
                 "the {what} has a length of {length}, no length against the four-bar's size {size}: the \
                  four-bar cannot move but as one body, and a cognate collapses"
@@ -172,7 +172,7 @@ pub fn cognates(f: &FourBar) -> Result<[FourBar; 2], ClassicalError> {
     // `P = B + k (C - B)`: `k` the coupler point in the coupler's own frame.
     let k = Complex::from_polar(distance / coupler, angle);
     let m = 1.0 - k;
-    for (joint, length) in [("B", distance.abs()), ("C", m.norm() * coupler.abs())] {
+    for (joint, length) in [("B", distance.abs()), ("C", m.norm() * coupler)] {
         if length <= tiny {
             return Err(ClassicalError::Degenerate(format!(
                 "the coupler point is on the joint {joint} ({length} from it, against the four-bar's size {size}): \
