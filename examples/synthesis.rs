@@ -122,10 +122,11 @@ fn path_generation() -> Result<(), Box<dyn std::error::Error>> {
         report.evaluations
     );
     println!(
-        "   {} could not be assembled, {} converged, {} valid; rejected: {} order, {} branch, {} circuit, \
-         {} no assembly, {} no full rotation, {} transmission angle",
+        "   {} could not be assembled, {} converged, {} stopped by the step tolerance, {} valid; rejected: {} order, \
+         {} branch, {} circuit, {} no assembly, {} no full rotation, {} transmission angle",
         report.unassembled,
         report.converged,
+        report.step_tolerance,
         report.valid,
         report.rejected.order,
         report.rejected.branch,

@@ -592,11 +592,12 @@ fn value_reach(values: impl Iterator<Item = f64> + Clone, turn: Option<f64>) -> 
 /// What happened to the starts, in one line.
 fn summary(r: &SynthesisReport) -> String {
     format!(
-        "{}: {} valid, {} converged, {} could not be assembled, {} rejected (order {}, branch {}, circuit {}, \
-         no assembly {}, miss {}), {}",
+        "{}: {} valid, {} converged, {} stopped by the step tolerance, {} could not be assembled, {} rejected (order \
+         {}, branch {}, circuit {}, no assembly {}, miss {}), {}",
         Count(r.starts.len() + r.seeds, "start"),
         r.valid,
         r.converged,
+        r.step_tolerance,
         r.unassembled,
         r.rejected.total(),
         r.rejected.order,

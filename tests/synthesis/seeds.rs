@@ -101,7 +101,11 @@ fn a_least_squares_function_generator_reaches_the_40_digit_optimum() {
     let (problem, seed) = function_problem(&points, &four_bar);
     let report = Search::default().with_seeds(vec![seed]).with_starts(0..8).run(&problem).unwrap();
     let best = report.best().unwrap();
-    assert_eq!(best.local.stop, OptimizerStop::Converged, "{:?}", best.local);
+    // Seven points, three lengths: the optimum's residual is not zero, so the solve stops on
+    // the step there, not converged (no residual within `tol`); it was reported `Converged`.
+    assert_eq!(best.local.stop, OptimizerStop::StepTolerance, "{:?}", best.local);
+    assert_eq!(report.converged, 0, "{report:?}");
+    assert!(report.step_tolerance >= 1, "{report:?}");
     assert!((best.local.residual - NORM).abs() <= 1e-12 * NORM, "residual norm {:e}", best.local.residual);
     for ((got, want), name) in best.values.iter().zip(OPTIMUM).zip(["a", "b", "c"]) {
         assert!((got - want).abs() <= 1e-7 * want, "{name}: {got} vs {want}");

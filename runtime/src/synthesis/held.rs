@@ -62,9 +62,9 @@ pub(super) struct Key {
     rms_error: f64,
     /// The first defect (`None`: valid), as the counts of rejections read it.
     first_defect: Option<Defect>,
-    /// The local solve's evaluations and whether it converged, as the report counts them.
+    /// The local solve's evaluations and why it stopped, as the report counts them.
     evaluations: usize,
-    converged: bool,
+    stop: OptimizerStop,
 }
 
 /// A candidate as a search holds it until its report.
@@ -85,7 +85,7 @@ impl Held {
                 rms_error: c.rms_error,
                 first_defect: c.defects.into_iter().next(),
                 evaluations: c.local.evaluations,
-                converged: c.local.stop == OptimizerStop::Converged,
+                stop: c.local.stop,
                 values: c.values,
             })
         } else {
@@ -101,11 +101,11 @@ impl Held {
         }
     }
 
-    /// The local solve's evaluations, and whether it converged.
-    pub(super) fn local(&self) -> (usize, bool) {
+    /// The local solve's evaluations, and why it stopped.
+    pub(super) fn local(&self) -> (usize, OptimizerStop) {
         match self {
-            Held::Whole(c) => (c.local.evaluations, c.local.stop == OptimizerStop::Converged),
-            Held::Key(k) => (k.evaluations, k.converged),
+            Held::Whole(c) => (c.local.evaluations, c.local.stop),
+            Held::Key(k) => (k.evaluations, k.stop),
         }
     }
 }

@@ -15,19 +15,24 @@ use crate::mechanism::kernel::{Q, SensKernel};
 pub struct LocalConfig {
     /// Stop after this many evaluations of the residuals and Jacobian (default `100`).
     pub max_evaluations: usize,
-    /// Converged when the residual norm is at most `tol` times the size of the targets
-    /// (their largest weighted distance from their centroid; a radian times the largest angle
-    /// weight where every target is an angle; default `1e-14`, rounding).
+    /// Converged ([`OptimizerStop::Converged`]) when the residual norm is at most `tol` times
+    /// the size of the targets (their largest weighted distance from their centroid; a radian
+    /// times the largest angle weight where every target is an angle; default `1e-14`,
+    /// rounding): met where the design meets its targets exactly. The norm is over every
+    /// residual, so with thousands of targets an exact fit's rounding can exceed it, and that
+    /// solve stops on the step instead ([`step_tol`](Self::step_tol)).
     #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub tol: f64,
-    /// Converged when a damped step changes no unknown by more than `step_tol` times its
-    /// size (`|dz_i| <= step_tol (|z_i| + step_tol w_i)`, `w_i` the width of its bounds, or its
-    /// magnitude where they are one value: free of the units of length and angle; default
-    /// `1e-13`), whether it lowered the residual (and was taken) or not. That says the solve
+    /// Stopped on the step ([`OptimizerStop::StepTolerance`]) when a damped step changes no
+    /// unknown by more than `step_tol` times its size (`|dz_i| <= step_tol (|z_i| + step_tol
+    /// w_i)`, `w_i` the width of its bounds, or its magnitude where they are one value: free of
+    /// the units of length and angle; default `1e-13`), whether it lowered the residual (and
+    /// was taken) or not, and the residual is above [`tol`](Self::tol). That says the solve
     /// moves the design no further, not that it is at a local minimum: it usually is one
-    /// (whose residual need not be zero), but the step is damped, and under heavy damping
-    /// (grown by rejected steps, as near where the design stops assembling) a step that small
-    /// can stop it where the gradient is not zero.
+    /// (whose residual need not be zero: a least-squares fit of more targets than the design
+    /// can meet stops so, and its design is the usable answer), but the step is damped, and
+    /// under heavy damping (grown by rejected steps, as near where the design stops
+    /// assembling) a step that small can stop it where the gradient is not zero.
     #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub step_tol: f64,
     /// Initial damping, relative to the diagonal of `J^T J` (default `1e-3`).
@@ -89,7 +94,12 @@ pub struct LocalReport {
     pub evaluations: usize,
     /// Accepted steps.
     pub iterations: usize,
-    /// Why it stopped: [`OptimizerStop::Converged`] when a tolerance was met.
+    /// Why it stopped: [`OptimizerStop::Converged`] when the residual met
+    /// [`LocalConfig::tol`], [`OptimizerStop::StepTolerance`] when a step changed the design
+    /// by less than [`LocalConfig::step_tol`] first (usually at a local minimum of non-zero
+    /// residual: usable, judged by its errors), [`OptimizerStop::MaxEvaluations`] when the
+    /// evaluations ran out, [`OptimizerStop::Stalled`] when no step lowered the residual at any
+    /// damping.
     #[cfg_attr(feature = "serde", serde(with = "stop_serde"))]
     pub stop: OptimizerStop,
     /// The residual norm at the end.
@@ -280,7 +290,13 @@ impl<K: SensKernel> ProblemOf<K> {
             }
             match step {
                 Step::Accepted { small: false } => {}
-                Step::Accepted { small: true } | Step::Stationary => break OptimizerStop::Converged,
+                // The design moves no further: converged only where the residual met its
+                // tolerance (the small step taken may have brought it there), a stop on the
+                // step otherwise; the two were both reported `Converged`.
+                Step::Accepted { small: true } | Step::Stationary if f <= cfg.tol * self.scale => {
+                    break OptimizerStop::Converged;
+                }
+                Step::Accepted { small: true } | Step::Stationary => break OptimizerStop::StepTolerance,
                 Step::Exhausted if evaluations >= cfg.max_evaluations => break OptimizerStop::MaxEvaluations,
                 Step::Exhausted => break OptimizerStop::Stalled,
             }
@@ -392,16 +408,17 @@ mod stop_serde {
     use serde::{Deserialize, Deserializer, Serializer};
 
     /// Every variant, in the order of [`ACCEPTED`].
-    const STOPS: [OptimizerStop; 4] = [
+    const STOPS: [OptimizerStop; 5] = [
         OptimizerStop::Converged,
         OptimizerStop::MaxEvaluations,
         OptimizerStop::Stalled,
         OptimizerStop::InfeasibleStart,
+        OptimizerStop::StepTolerance,
     ];
 
     /// The names read: any other is an error listing these, not a variant guessed (a typo, or a
     /// variant of a newer version, was read as `Stalled` without a word).
-    const ACCEPTED: [&str; 4] = ["Converged", "MaxEvaluations", "Stalled", "InfeasibleStart"];
+    const ACCEPTED: [&str; 5] = ["Converged", "MaxEvaluations", "Stalled", "InfeasibleStart", "StepTolerance"];
 
     /// The name of `stop`. The match is exhaustive (in this crate `#[non_exhaustive]` does not
     /// ask for a wildcard), so a new variant does not compile until it is named here; add it to
@@ -412,6 +429,7 @@ mod stop_serde {
             OptimizerStop::MaxEvaluations => "MaxEvaluations",
             OptimizerStop::Stalled => "Stalled",
             OptimizerStop::InfeasibleStart => "InfeasibleStart",
+            OptimizerStop::StepTolerance => "StepTolerance",
         }
     }
 
@@ -459,7 +477,8 @@ mod stop_serde {
                 let text = json.replace("\"Converged\"", &format!("\"{typo}\""));
                 let err = serde_json::from_str::<LocalReport>(&text).unwrap_err().to_string();
                 assert!(err.contains(&format!("unknown variant `{typo}`")), "{err}");
-                assert!(err.contains("`Converged`, `MaxEvaluations`, `Stalled`, `InfeasibleStart`"), "{err}");
+                let names = "`Converged`, `MaxEvaluations`, `Stalled`, `InfeasibleStart`, `StepTolerance`";
+                assert!(err.contains(names), "{err}");
             }
         }
     }

@@ -30,6 +30,7 @@ use std::ops::Range;
 ///     unassembled: 0,
 ///     refused: Vec::new(),
 ///     converged: 0,
+///     step_tolerance: 0,
 ///     valid: 0,
 ///     rejected: Rejections::default(),
 ///     evaluations: 0,
@@ -66,8 +67,18 @@ pub struct SynthesisReport {
     /// from JSON without it: none.)
     #[cfg_attr(feature = "serde", serde(default))]
     pub refused: Vec<Refused>,
-    /// Local solves that met the tolerance (residual or step).
+    /// Local solves whose residual met its tolerance ([`LocalConfig::tol`](super::LocalConfig::tol):
+    /// [`OptimizerStop::Converged`](crate::analysis::OptimizerStop::Converged)), as a design
+    /// that meets its targets exactly does.
     pub converged: usize,
+    /// Local solves that stopped on the step tolerance first
+    /// ([`LocalConfig::step_tol`](super::LocalConfig::step_tol):
+    /// [`OptimizerStop::StepTolerance`](crate::analysis::OptimizerStop::StepTolerance)): the
+    /// design moved no further, usually at a local minimum of non-zero residual (a
+    /// least-squares fit of more targets than the design can meet stops so: a usable result,
+    /// judged by its errors and defects). (Read from JSON without it: none.)
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub step_tolerance: usize,
     /// Local solves whose result is valid (no defect).
     pub valid: usize,
     /// Candidates rejected, counted by their first defect.
@@ -105,6 +116,7 @@ impl SynthesisReport {
             unassembled: 0,
             refused: Vec::new(),
             converged: 0,
+            step_tolerance: 0,
             valid: 0,
             rejected: Rejections::default(),
             evaluations: 0,
@@ -289,6 +301,7 @@ mod tests {
                 message: "the angle parameter `b` is too large".into(),
             }],
             converged: 10,
+            step_tolerance: 3,
             valid: 0,
             rejected: Rejections { order: 1, circuit: 13, ..Rejections::default() },
             evaluations: 140,
@@ -298,5 +311,10 @@ mod tests {
         let back: SynthesisReport = serde_json::from_str(&json).unwrap();
         assert_eq!(back, report);
         assert!(json.contains("\"Stalled\"") && json.contains("\"DoubleRocker\""), "{json}");
+        // A report written before the stops on the step were counted apart reads with none.
+        let older = json.replace("\"step_tolerance\":3,", "");
+        assert_ne!(older, json);
+        let read: SynthesisReport = serde_json::from_str(&older).unwrap();
+        assert_eq!((read.converged, read.step_tolerance), (10, 0));
     }
 }

@@ -15,6 +15,7 @@ use super::problem::ProblemOf;
 use super::refusal::{RefusalKind, Refused};
 use super::report::{Rejections, SynthesisReport};
 use super::resolve::Inputs;
+use crate::analysis::optimize::OptimizerStop;
 use crate::mechanism::kernel::SensKernel;
 use std::ops::Range;
 
@@ -491,6 +492,7 @@ impl Search {
             unassembled: 0,
             refused: Vec::new(),
             converged: 0,
+            step_tolerance: 0,
             valid: 0,
             rejected: Rejections::default(),
             evaluations: 0,
@@ -513,9 +515,10 @@ impl Search {
                         continue;
                     }
                 };
-                let (local_evaluations, converged) = c.local();
+                let (local_evaluations, stop) = c.local();
                 report.evaluations += local_evaluations;
-                report.converged += usize::from(converged);
+                report.converged += usize::from(stop == OptimizerStop::Converged);
+                report.step_tolerance += usize::from(stop == OptimizerStop::StepTolerance);
                 match c.first_defect() {
                     None => report.valid += 1,
                     Some(d) => report.rejected.count(d),
@@ -604,6 +607,7 @@ impl SynthesisReport {
             Refused::add(&mut self.refused, r);
         }
         self.converged += other.converged;
+        self.step_tolerance += other.step_tolerance;
         self.valid += other.valid;
         self.rejected.add(&other.rejected);
         self.evaluations += other.evaluations;
@@ -616,7 +620,6 @@ impl SynthesisReport {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::optimize::OptimizerStop;
     use crate::synthesis::LocalReport;
 
     /// A valid candidate of one design variable in `0 ..= 1`, ranked by `rms`.

@@ -17,7 +17,9 @@ pub use nelder_mead::NelderMead;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum OptimizerStop {
-    /// The tolerances were met.
+    /// The convergence tolerances were met: the residual's (Levenberg–Marquardt's `tol`, the
+    /// synthesis' local solve's [`LocalConfig::tol`](crate::synthesis::LocalConfig::tol)), or
+    /// both of [`NelderMead`]'s.
     Converged,
     /// The evaluation budget ran out first.
     MaxEvaluations,
@@ -28,6 +30,15 @@ pub enum OptimizerStop {
     /// or NaN): with nothing to compare, no step can improve, so it stops after evaluating the
     /// simplex. Start from a feasible point.
     InfeasibleStart,
+    /// A step changed no variable by more than the step tolerance (the synthesis' local solve's
+    /// [`LocalConfig::step_tol`](crate::synthesis::LocalConfig::step_tol), relative to each
+    /// variable's size) before the residual met its tolerance: the minimiser moves the point no
+    /// further. Usually a local minimum whose residual is not zero, as a least-squares fit of
+    /// more targets than the variables can meet stops, and then the point is the usable
+    /// answer; but not proven one, since a heavily damped step (after rejected ones, as near
+    /// where a design stops assembling) can be that small where the gradient is not zero. Judge
+    /// the point by its residual. Only the synthesis' local solve stops so.
+    StepTolerance,
 }
 
 /// The result of a minimiser: the best point and its diagnostics.
