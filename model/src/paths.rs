@@ -76,8 +76,9 @@ impl Model {
 
     /// Where a model of one angle input assembles nearest the input `at` (where a point solve
     /// failed with `Error::NoAssembly`, say): point solves from the declared guess at `at` and
-    /// at `samples` angles of the turn about it, nearest first, and from the first that solves
-    /// the stretch reachable on its assembly mode, a turn each way: the runtime's
+    /// at `samples` angles of the turn about it, nearest first (of two as near, the greater),
+    /// and from the first that solves the stretch reachable on its assembly mode, a turn each
+    /// way: the runtime's
     /// `assembly_near` over this model (see [`assembly_near_of`]), with the model's solver
     /// configuration ([`Model::sweep_config`]). `None` where no sample solves.
     ///

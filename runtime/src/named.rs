@@ -186,8 +186,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
 
     /// Where a mechanism of one angle input assembles nearest `at` (where a point solve failed
     /// with [`Error::NoAssembly`], say): point solves from the declared guess at `at` and at a
-    /// degree's spacing over the turn about it ([`ASSEMBLY_SAMPLES`]), nearest first, and from
-    /// the first that solves the stretch reachable on its assembly mode (see
+    /// degree's spacing over the turn about it ([`ASSEMBLY_SAMPLES`]), nearest first (of two as
+    /// near, the greater), and from the first that solves the stretch reachable on its assembly
+    /// mode (see
     /// [`assembly_near`](crate::paths::assembles::assembly_near)). `None` where the loops close
     /// nowhere on the turn from the declared guess.
     fn assembly_near(&self, at: impl Into<Self::Inputs>) -> Result<Option<Assembly<Self::Inputs>>, Error> {

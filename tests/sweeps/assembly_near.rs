@@ -64,6 +64,28 @@ fn the_stretch_is_the_one_on_the_turn_of_the_input_asked_for() {
     }
 }
 
+/// At `pi` the short-reach four-bar (symmetric about `phi = 0`) is as far from its stretch
+/// `|phi| <= lim` one way as the other: the samples `pi + j h` and `pi - j h` assemble alike, and
+/// the search answers the one above `pi`, at every count of samples.
+#[test]
+fn of_two_samples_as_near_the_greater_is_found() {
+    let m = short_reach(1.0);
+    let lim = four_bar_limit(1.0, 3.2, 4.0);
+    let assembles = |x: f64| m.position(x, &m.guess(x)).is_ok();
+    for samples in [90, 360, 1000] {
+        let h = TAU / samples as f64;
+        let near = assembly_near(&m, [PI], samples).unwrap().expect("it assembles");
+        let j = ((near.found[0] - PI) / h).round();
+        assert!(j >= 1.0, "{samples}: {near:?}");
+        assert_eq!(near.found, [PI + j * h], "{samples}");
+        // A tie: the sample as near below assembles too, and none nearer does either way.
+        assert!(assembles(PI - j * h), "{samples}: {near:?}");
+        assert!(!assembles(PI + (j - 1.0) * h) && !assembles(PI - (j - 1.0) * h), "{samples}");
+        // The stretch it reaches is the next turn's copy, above `pi`.
+        assert_close!(near.reach.from[0], TAU - lim, tol::LOCATED, "{near:?}");
+    }
+}
+
 #[test]
 fn a_four_bar_that_folds_short_assembles_on_the_far_side() {
     // Coupler less rocker (3.5 - 0.8 = 2.7) beyond the shortest distance from crank pin to

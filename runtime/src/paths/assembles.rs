@@ -49,8 +49,10 @@ impl<X> Assembly<X> {
 /// Where a mechanism of one angle input assembles nearest the input `at` (where a point solve
 /// failed with [`Error::NoAssembly`], say): point solves from the declared guess
 /// ([`Mechanism::guess_flat`] at each angle) at `at`, then at `samples` angles of the turn about it,
-/// spread evenly and tried nearest first; from the first that solves, the stretch reachable on
-/// its assembly mode ([`reachable`](super::reach::reachable), a turn each way). `None` where no
+/// spread evenly and tried nearest first, of two as near (one each way) the greater first; from
+/// the first that solves, the stretch reachable on its assembly mode
+/// ([`reachable`](super::reach::reachable), a turn each way). So where the mechanism assembles as
+/// near `at` on both sides, `found` is the sample above it (counter-clockwise). `None` where no
 /// sample solves: the loops close nowhere on the turn from the declared guess, within the
 /// samples' spacing (a stretch narrower than that, or one that only another guess reaches,
 /// goes unseen). A compiled mechanism's [`assembly_near_of`] (through [`Compiled`]).
@@ -116,7 +118,8 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
         v[0] = x;
         v
     };
-    // Nearest first: `at`, then one spacing each way, two, ... up to half a turn each way.
+    // Nearest first: `at`, then one spacing each way, two, ... up to half a turn each way; the
+    // side above `at` first, the documented tie-break between two samples as near.
     let offsets = std::iter::once(0.0).chain((1..=samples / 2).flat_map(|j| [j as f64, -(j as f64)]));
     for j in offsets {
         let x = input(x0 + j * spacing);
