@@ -12,6 +12,7 @@ mod support;
 
 mod cam_profile;
 mod classical_synthesis;
+mod classical_units;
 mod coarse_samples;
 mod flat_face;
 mod limits_crossing;
