@@ -170,6 +170,7 @@ mod blocks;
 mod closed;
 #[cfg(test)]
 mod compiled_reference;
+mod confusables;
 mod count;
 mod dense;
 mod drawing;

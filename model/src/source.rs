@@ -572,9 +572,12 @@ fn lex_message(rest: &str, e: &proc_macro2::LexError) -> String {
         (Some('\''), _) => {
             "unexpected `'`: a declaration has no character literals; write a number or a name".to_string()
         }
-        (Some(c), _) if !c.is_ascii() && !unicode_ident_start(c) => {
-            format!("unknown start of token: {}", c.escape_default())
-        }
+        // A typographic or mathematical sign (`−`, `×`, `°`, `²`): what to write instead, as
+        // the compiler names the ASCII character one looks like.
+        (Some(c), _) if !c.is_ascii() && !unicode_ident_start(c) => match crate::confusables::help(c) {
+            Some(help) => format!("unknown start of token: {}\nhelp: {help}", c.escape_default()),
+            None => format!("unknown start of token: {}", c.escape_default()),
+        },
         _ => format!("cannot read the declaration: {e}"),
     }
 }
