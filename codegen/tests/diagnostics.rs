@@ -1745,3 +1745,32 @@ fn a_term_of_one_name_as_length_and_angle_is_told_to_write_a_length() {
         }
     }
 }
+
+/// A loop closed with a negated zero (`== -0`, `-(0) ==`, `== (-0)`) is the loop closed with
+/// `== 0`: the negated zero vector is the zero vector. It was refused as "the left side is a
+/// vector but the right side is a scalar", though `0` is taken for the zero vector there.
+#[test]
+fn a_negated_zero_closes_a_loop_as_zero_does() {
+    let declaration = |closed: &str| {
+        format!(
+            "pub struct FourBar {{ params a, b, c, d; input phi; unknowns beta = 0.5, gamma = 1.5; \
+             loop abcd: {closed}; }}"
+        )
+    };
+    let sum = "a @ phi + b @ beta - (d, 0) - c @ gamma";
+    // Each closed with a negated zero beside the same closed with `0` (on the same side: the
+    // equations of `0 == sum` are those of `sum == 0` negated).
+    let cases = [
+        (format!("{sum} == -0"), format!("{sum} == 0")),
+        (format!("{sum} == (-0)"), format!("{sum} == 0")),
+        (format!("{sum} == -(0)"), format!("{sum} == 0")),
+        (format!("-0 == {sum}"), format!("0 == {sum}")),
+    ];
+    for (negated, zero) in cases {
+        let zero = kinloop_codegen::expand(tokens(&declaration(&zero))).to_string();
+        assert!(!zero.contains("compile_error"), "{zero}");
+        let src = declaration(&negated);
+        assert_eq!(errors(&src), Vec::<String>::new(), "{negated}");
+        assert_eq!(kinloop_codegen::expand(tokens(&src)).to_string(), zero, "{negated}");
+    }
+}

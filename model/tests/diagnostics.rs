@@ -504,3 +504,23 @@ fn a_term_of_one_name_as_length_and_angle_is_told_a_length_at_run_time() {
     assert_eq!(got, [(5, 26)], "{d}");
     assert!(d.items[0].message.contains("swapping the two cannot help; write a length there"), "{d}");
 }
+
+/// A loop closed with a negated zero (`== -0`) is read as the loop closed with `== 0`, as the
+/// macro reads it: the negated zero vector is the zero vector (it was refused as a scalar
+/// facing a vector).
+#[test]
+fn a_loop_closed_with_a_negated_zero_is_read_as_with_zero() {
+    let text = |zero: &str| {
+        format!(
+            "pub struct FourBar {{\n    params a = 1, b = 3, c = 2.5, d = 3.2;\n    input phi;\n    unknowns beta = \
+             0.5, gamma = 1.5;\n    loop abcd: a @ phi + b @ beta - (d, 0) - c @ gamma == {zero};\n}}\n"
+        )
+    };
+    let mut zero = Model::read("zero.kl", &text("0")).unwrap_or_else(|e| panic!("{e:?}"));
+    let want = zero.solve(&[0.7]).expect("solved").clone();
+    for negated in ["-0", "(-0)", "-(0)"] {
+        let mut model = Model::read("negated.kl", &text(negated)).unwrap_or_else(|e| panic!("{negated}: {e:?}"));
+        let got = model.solve(&[0.7]).expect("solved");
+        assert_eq!((&got.q, &got.dq, &got.out), (&want.q, &want.dq, &want.out), "{negated}");
+    }
+}

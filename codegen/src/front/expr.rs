@@ -262,11 +262,13 @@ impl Expr {
         }
     }
 
-    /// Is this the literal `0` (used for `loop name: a + b - c == 0`)?
+    /// Is this the literal `0` (used for `loop name: a + b - c == 0`), negated or in
+    /// parentheses (`-0`, `(0)`): the negated zero vector is the zero vector, so `== -0` closes
+    /// a loop as `== 0` does, where it was refused as a scalar facing a vector.
     pub fn is_literal_zero(&self) -> bool {
         match self {
             Expr::Num { value, .. } => *value == 0.0,
-            Expr::Paren { inner, .. } => inner.is_literal_zero(),
+            Expr::Paren { inner, .. } | Expr::Neg { expr: inner, .. } => inner.is_literal_zero(),
             _ => false,
         }
     }
