@@ -39,14 +39,10 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let from = model_inputs(req.from, &kinds[..ni], req.deg, "--from")?;
     let to = model_inputs(req.to, &kinds[..ni], req.deg, "--to")?;
     too_few_samples(req, from != to)?;
-    // The angle inputs in degrees as given, whose samples the table writes.
-    let degrees: Vec<Option<(f64, f64)>> = match req.deg {
-        true => {
-            let (a, b) = (parse_inputs(req.from, ni, "--from")?, parse_inputs(req.to, ni, "--to")?);
-            (0..ni).map(|i| (kinds[i] == QuantityKind::Angle).then_some((a[i], b[i]))).collect()
-        }
-        false => vec![None; ni],
-    };
+    // Every input's ends as given (an angle's in degrees with `--deg`, else in the model's
+    // units), whose samples the table writes.
+    let (a, b) = (parse_inputs(req.from, ni, "--from")?, parse_inputs(req.to, ni, "--to")?);
+    let given: Vec<(f64, f64)> = a.into_iter().zip(b).collect();
     let name = model.name().to_string();
     let factors = factors(model, &kinds, req.deg);
     let columns = model.columns();
@@ -66,7 +62,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Error::InvalidArgument(_) => exit::usage(format!("{name}: {e}")),
         e => solve_failed(&name, e, &kinds[..ni], req.deg),
     })?;
-    let units = Units { factors, degrees, last: req.samples.saturating_sub(1).max(1) };
+    let units = Units { factors, given, last: req.samples.saturating_sub(1).max(1) };
     // The first sample, before anything is created: a range longer than a sweep follows is
     // refused there, a usage error.
     // A start that cannot be solved (no assembly, a singular position) fails there too, as
@@ -138,12 +134,12 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
 }
 
 /// How a sweep's states are written: each state's row (in the order of `table_row`) times
-/// the factors of the units written, its angle inputs in degrees the samples' own values.
+/// the factors of the units written, its inputs the samples' own values.
 struct Units {
     /// Per column, the factor from the model's units to those written.
     factors: Vec<f64>,
-    /// Per input, its ends in degrees as given, where it is an angle written in degrees.
-    degrees: Vec<Option<(f64, f64)>>,
+    /// Per input, its ends as given, in the units written.
+    given: Vec<(f64, f64)>,
     /// The index of the last sample (1 for a sweep of one sample).
     last: usize,
 }
@@ -152,12 +148,13 @@ impl Units {
     /// The row written for the state `state` of sample `s`.
     fn row(&self, s: usize, state: &[f64]) -> Vec<f64> {
         let mut row: Vec<f64> = state.iter().zip(&self.factors).map(|(v, f)| v * f).collect();
-        // An angle input in degrees: the sample's value between the ends given, not its
-        // radians times `180/π` (`59.99999999999999` for the sample at 60), as `solve` writes
-        // the input given. Exact where the samples fall on round numbers.
-        for (i, ends) in self.degrees.iter().enumerate() {
-            let Some((a, b)) = ends else { continue };
-            row[i] = sample_as_given(*a, *b, s, self.last, row[i]);
+        // Each input: the sample's value between the ends given, as `solve` writes the input
+        // given. Not an angle's radians times `180/π` with `--deg` (`59.99999999999999` for the
+        // sample at 60), nor the doubles' own steps in the model's units (`0.44999999999999996`
+        // between 0.3 and 0.6, `0.9000000000000001` for `--to 0.9` itself). Exact where the
+        // samples fall on round numbers.
+        for (i, &(a, b)) in self.given.iter().enumerate() {
+            row[i] = sample_as_given(a, b, s, self.last, row[i]);
         }
         row
     }
@@ -443,7 +440,7 @@ mod tests {
     fn sweep_into(samples: usize, capacity: usize) -> (Recorder, usize, io::Result<bool>) {
         let mut model = Model::read("four_bar.kl", FOUR_BAR).expect("the declaration reads");
         let columns = model.columns();
-        let units = Units { factors: vec![1.0; columns.len()], degrees: vec![None], last: samples - 1 };
+        let units = Units { factors: vec![1.0; columns.len()], given: vec![(0.0, 1.0)], last: samples - 1 };
         let mut sweep = model.sweep(&[0.0], &[1.0], samples, &[0.6, 1.9]).expect("a sweep");
         let solved = Rc::new(Cell::new(0));
         let mut sink = Recorder { solved: solved.clone(), bytes: Vec::new(), writes: Vec::new(), capacity };

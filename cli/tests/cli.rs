@@ -1557,3 +1557,30 @@ fn a_sweep_writes_the_decimals_between_its_ends() {
         assert_eq!(rows.len(), samples);
     }
 }
+
+/// So are its inputs in the model's units, radians or lengths, of one input or several: they
+/// were written as solved, the doubles' own steps (`0.44999999999999996` between 0.3 and 0.6,
+/// `0.6000000000000001`, `--to 0.9` itself as `0.9000000000000001`), where the same sweep in
+/// degrees wrote its decimals.
+#[test]
+fn a_sweep_in_radians_writes_the_decimals_between_its_ends() {
+    let (five_bar, four_bar) = (shipped("five_bar.kl"), shipped("four_bar.kl"));
+    let params = ["--params", "a=1,b=3,c=2.5,d=3.2"];
+    let runs: [(&[&str], &str, &str, &[f64]); 2] = [
+        (&[&five_bar], "0.3,0.3", "0.6,0.9", &[0.075, 0.15]),
+        (&[&four_bar, params[0], params[1]], "0.3", "0.9", &[0.15]),
+    ];
+    for (file, from, to, steps) in runs {
+        let args = [&["sweep"], file, &["--from", from, "--to", to, "--samples", "5"]].concat();
+        let (_, rows) = csv(&kinloop(&args));
+        assert_eq!(rows.len(), 5);
+        let starts: Vec<f64> = from.split(',').map(|v| v.parse().expect("a number")).collect();
+        for (k, row) in rows.iter().enumerate() {
+            for (i, (start, step)) in starts.iter().zip(steps).enumerate() {
+                // The decimal the sample stands for, read back: an independent parse.
+                let want: f64 = format!("{:.3}", start + step * k as f64).parse().expect("a number");
+                assert_eq!(row[i], want, "{from}..{to}, sample {k}, input {i}");
+            }
+        }
+    }
+}
