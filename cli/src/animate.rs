@@ -213,6 +213,8 @@ fn find_cam(model: &mut Model, req: &Request, point: &str) -> Result<Found, Fail
         plot: None,
     };
     let found = cam::find(model, &cam)?;
+    // Before its report: a cam the drawing cannot hold is refused in the options' terms.
+    cam_drawn::fits(&found, &cam::follower_options(req.follower))?;
     found.report();
     Ok(found)
 }

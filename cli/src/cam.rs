@@ -368,7 +368,7 @@ pub fn find(model: &mut Model, req: &Request) -> Result<Found, Failed> {
 
 /// The follower's options as given (`--rocker -40,140 --flat --face-offset -135`), the cam's
 /// pivot with them, for a message about the cam they make.
-fn follower_options(fa: &FollowerArgs) -> String {
+pub(crate) fn follower_options(fa: &FollowerArgs) -> String {
     let mut given = Vec::new();
     let mut push = |option: &str, value: Option<String>| given.push(format!("{option} {}", value.unwrap_or_default()));
     if let Some(g) = &fa.guide {

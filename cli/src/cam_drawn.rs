@@ -16,21 +16,10 @@ pub const SAMPLES: usize = 721;
 pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultDrawing {
     let (pivot, turn, columns) = (found.pivot, found.turn, found.columns);
     let profile = found.profile().to_vec();
-    // The profile's size, for the flat face's margins beyond its contacts.
-    let size = profile.iter().fold(0.0f64, |r, p| r.max(p[0].hypot(p[1])));
     let touching = match &found.shape {
         Shape::Roller(cam, _) if cam.roller > 0.0 => Touching::Roller(point.to_string(), cam.roller),
         Shape::Roller(..) => Touching::KnifeEdge,
-        Shape::Flat(cam, line, _) => {
-            let (lo, hi) = cam.offset_range();
-            let margin = 0.1 * (hi - lo) + 0.05 * size;
-            // The face's plate, in the face's frame (its origin, its direction along x): as long
-            // as the contacts with a margin, a thirtieth of the cam's size thick, on the side of
-            // the face away from the cam.
-            let thick = line.away * size / 30.0;
-            let (lo, hi) = (lo - margin, hi + margin);
-            Touching::Face(*line, vec![[lo, 0.0], [hi, 0.0], [hi, thick], [lo, thick]])
-        }
+        Shape::Flat(_, line, _) => Touching::Face(*line, plate(found).unwrap_or_default()),
     };
     let warning = warning(found);
     drawing.extend(move |d| {
@@ -57,6 +46,67 @@ pub fn with_cam(drawing: DefaultDrawing, found: &Found, point: &str) -> DefaultD
             None => d,
         }
     })
+}
+
+/// The size of the cam's profile: its farthest point from the pivot.
+fn size(found: &Found) -> f64 {
+    found.profile().iter().fold(0.0f64, |r, p| r.max(p[0].hypot(p[1])))
+}
+
+/// A flat face's plate, in the face's frame (its origin, its direction along x): as long as the
+/// contacts with a margin, a thirtieth of the cam's size thick, on the side of the face away
+/// from the cam. `None` for a roller or a knife edge.
+fn plate(found: &Found) -> Option<Vec<[f64; 2]>> {
+    let Shape::Flat(cam, line, _) = &found.shape else { return None };
+    let size = size(found);
+    let (lo, hi) = cam.offset_range();
+    let margin = 0.1 * (hi - lo) + 0.05 * size;
+    let thick = line.away * size / 30.0;
+    let (lo, hi) = (lo - margin, hi + margin);
+    Some(vec![[lo, 0.0], [hi, 0.0], [hi, thick], [lo, thick]])
+}
+
+/// The most a coordinate of what [`with_cam`] draws can reach from the origin over the turn (a
+/// bound: the drawing's own extent is no larger): the cam about its pivot; the roller about
+/// the follower's point, which lies within the cam's size and the roller's radius of the
+/// pivot; a flat face's plate about its origin, the follower's point (within the cam's size
+/// of the pivot) or the foot of the rocker's pivot on the face.
+fn reach(found: &Found) -> f64 {
+    let far = |p: [f64; 2]| p[0].abs().max(p[1].abs());
+    let (pivot, size) = (far(found.pivot), size(found));
+    match &found.shape {
+        Shape::Roller(cam, _) => pivot + size + 2.0 * cam.roller,
+        Shape::Flat(_, line, _) => {
+            let plate = plate(found).unwrap_or_default().iter().fold(0.0f64, |r, p| r.max(p[0].hypot(p[1])));
+            let origin = match line.face {
+                FlatFace::Translating { .. } => pivot + size,
+                FlatFace::Rocking { pivot: a, offset, .. } => far(a) + offset.abs(),
+            };
+            (pivot + size).max(origin + plate)
+        }
+    }
+}
+
+/// Refuses a cam whose drawing would reach farther from the origin than an `f64` holds (a
+/// pivot or a rocker's pivot near the largest finite number, `--pivot 1e308,0`): a usage error
+/// naming the follower's options (`options`) and the bound, where the drawing failed with its
+/// own "extent of item 5 (outline) is not finite" and exit code 1.
+pub fn fits(found: &Found, options: &str) -> Result<(), crate::Failed> {
+    let reach = reach(found);
+    if reach <= f64::MAX {
+        return Ok(());
+    }
+    // The sum overflows to infinity where it is beyond the largest double: no number to say.
+    let reaches = match reach.is_finite() {
+        true => format!("reaches {} from the origin", Number(reach)),
+        false => "reaches farther from the origin".to_string(),
+    };
+    Err(crate::exit::usage(format!(
+        "the cam of the follower given ({options}) cannot be drawn: the cam about its pivot (its pivot's distance from \
+         the origin and its radius added, and what touches it) {reaches} than the largest coordinate a drawing \
+         holds, {}; give the cam's pivot (and a rocker's) nearer the follower's path",
+        Number(f64::MAX)
+    )))
 }
 
 /// The warning written into the drawing where the cam cannot make the motion (as the checks on

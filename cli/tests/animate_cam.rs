@@ -201,6 +201,35 @@ fn follower_options_without_a_cam_and_a_cam_of_no_one_input_are_usage_errors() {
     }
 }
 
+/// A cam whose drawing reaches beyond the largest `f64` (a pivot, or a rocking face's pivot,
+/// near it: huge but finite) is a usage error naming the options and the bound, before the
+/// cam's report; it was the drawing's internal "extent of item 5 (outline) is not finite at
+/// pose 0", exit code 1. A pivot far out but within the bound is drawn.
+#[test]
+fn a_cam_too_far_out_to_draw_is_a_usage_error_naming_the_bound() {
+    let path = out("too_far.svg");
+    let p = path.display().to_string();
+    let cam = shipped("dwell_cam.kl");
+    let base = ["animate", &cam, "--from", "0", "--to", "360", "--deg", "--cam", "follower", "--out", &p];
+    let refused: [(&[&str], &str); 3] = [
+        (&["--guide", "0,1", "--roller", "10", "--pivot", "1e308,0"], "--guide 0,1, --roller 10, --pivot 1e308,0"),
+        (&["--guide", "0,1", "--flat", "0", "--pivot", "0,-9e307"], "--guide 0,1, --flat 0, --pivot 0,-9e307"),
+        (&["--rocker", "1e308,0", "--flat", "0"], "--rocker 1e308,0, --flat 0, the cam's pivot 0,0"),
+    ];
+    for (extra, options) in refused {
+        let o = kinloop(&[&base[..], extra].concat());
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {stderr}");
+        let says = format!("the cam of the follower given ({options}) cannot be drawn");
+        assert!(stderr.contains(&says) && stderr.contains("1.7976931348623157e308"), "{extra:?}: {stderr}");
+        assert!(!stderr.contains("extent") && !stderr.contains("cam: "), "{extra:?}: {stderr}");
+        assert!(!path.exists(), "{extra:?} left {}", path.display());
+    }
+    let o = kinloop(&[&base[..], &["--guide", "0,1", "--roller", "10", "--pivot", "1e200,0"]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::remove_file(&path).ok();
+}
+
 /// A range the animation refuses is refused before the cam is found: the cam's report (its
 /// largest pressure angle, its sharpest point, its undercut) was written first, then the error,
 /// as though the animation had gone ahead.
