@@ -31,6 +31,27 @@ fn shipped_files_are_the_fixtures_declarations() {
     }
 }
 
+/// The documentation of each shipped file is true where it is read: a link to a Rust type
+/// (`[`RhombicDriveDense`]`, `[`HarmonicCamRocker`]`, which the fixtures' text linked) names
+/// the mechanism the file declares or none, since a `.kl` file declares that one alone.
+#[test]
+fn shipped_files_link_no_type_they_do_not_declare() {
+    let dir = PathBuf::from(shipped("four_bar.kl")).parent().expect("the shipped files' folder").to_path_buf();
+    for entry in std::fs::read_dir(&dir).expect("the shipped files") {
+        let path = entry.expect("a shipped file").path();
+        if path.extension().is_none_or(|e| e != "kl") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("a shipped file");
+        let declared = text.split("pub struct ").nth(1).and_then(|r| r.split([' ', '{', '\n']).next()).unwrap_or("");
+        for line in text.lines().filter_map(|l| l.trim_start().strip_prefix("///")) {
+            for linked in line.split("[`").skip(1).filter_map(|r| r.split_once("`]").map(|(name, _)| name)) {
+                assert_eq!(linked, declared, "{}: {line}", path.display());
+            }
+        }
+    }
+}
+
 #[test]
 fn solve_writes_the_compiled_mechanisms_state() {
     let drive = fx::RhombicDrive::default();
