@@ -60,7 +60,12 @@
 //!   so is `x + psi` in a `loop`, `let`, `point` or `output` alike (a reported value that mixes
 //!   the two changes with the unit of length as much as an equation does), and `max(x, psi)`,
 //!   which is a length or an angle by the input, and `atan2(x, psi)`, `hypot(x, psi)` and
-//!   `wrap(x, psi)`, which change with the unit of length as the sum does.
+//!   `wrap(x, psi)`, which change with the unit of length as the sum does. So does a vector of
+//!   an angle and a length wherever it is built outside a position: `norm((x, psi))` (which is
+//!   `sqrt(x^2 + psi^2)`), `dot((x, psi), u)`, `angle((x, 0) + (0, psi))` are compile errors at
+//!   the vector, which "combines an angle and a length". The vectors these functions take need
+//!   not be lengths, only of one kind: a vector of angles (`norm((phi, psi))`), or of a length
+//!   and a constant or a number of no unit (`(x, 0.5)`, `(x, sin(psi))`), compiles as before.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

@@ -569,6 +569,57 @@ fn an_angle_beside_a_length_in_atan2_hypot_or_wrap_is_a_unit_mix() {
     }
 }
 
+/// A vector of an angle and a length changes with the unit of length as their sum does: its
+/// magnitude, its products and its direction. It is refused where it is built (a tuple given to
+/// `norm`, `dot`, `cross`, `angle` or `rot`, a sum of vectors), once: a vector built from it
+/// (`2 * (x, psi)`) is that mistake, and one that is a position is told at its coordinate.
+#[test]
+fn a_vector_of_an_angle_and_a_length_is_a_unit_mix() {
+    for (tail, shown, side) in [
+        ("output w = norm((x, psi));", "(x, psi)", "`psi` is an angle ("),
+        ("output w = dot((x, psi), (cos(phi), sin(phi)));", "(x, psi)", "`psi` is an angle ("),
+        ("output w = cross((psi, x), (0, 1));", "(psi, x)", "`psi` is an angle ("),
+        ("output w = angle(2 * (x, psi));", "(x, psi)", "`psi` is an angle ("),
+        ("output w = norm(rot((x, phi), psi));", "(x, phi)", "`phi` is an angle ("),
+        (
+            "let v = (x, 0) + (0, psi); output w = norm(v);",
+            "(x, 0) + (0, psi)",
+            "`((x, 0) + (0, psi)).y` is an angle (made from `psi`",
+        ),
+        ("output w = norm(x * (1, 0) + (0, 2 * psi));", "x * (1, 0) + (0, 2 * psi)", "(made from `psi`"),
+        ("eq e: u == dot((x, psi), (1, 0));", "(x, psi)", "`psi` is an angle ("),
+    ] {
+        let e = errors(&format!(
+            "pub struct S {{ {SLIDER} {} {tail} }}",
+            if tail.starts_with("eq") { "unknowns u;" } else { "" }
+        ));
+        assert_eq!(e.len(), 1, "{tail}: {e:#?}");
+        assert!(
+            e[0].starts_with(&format!("`{shown}` combines an angle and a length, so its value would change")),
+            "{tail}: {e:#?}"
+        );
+        assert!(e[0].contains(side) && e[0].contains("such as `r * "), "{tail}: {e:#?}");
+    }
+    // A vector that is a position is told at its coordinate, as before, and only there.
+    for tail in ["point p = (x, 0) + (0, psi);", "let v = (x, psi); point p = v + (1, 1);"] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} {tail} }}"));
+        assert_eq!(e.len(), 1, "{tail}: {e:#?}");
+        assert!(e[0].starts_with("`psi` is an angle") && e[0].contains("a coordinate of"), "{tail}: {e:#?}");
+    }
+    // Coordinates of one kind, a constant, a number of no unit (a sine), a length times an angle.
+    for tail in [
+        "output w = norm((x, l));",
+        "output w = norm((phi, psi));",
+        "output w = norm((x, 0.5)); output v = dot((psi, 1), (1, 0));",
+        "output w = norm((x, l * sin(psi)));",
+        "output w = norm((x, r * psi));",
+        "output w = dot((x, 0), (0, psi));",
+        "output w = (x, psi * r).y;",
+    ] {
+        assert_eq!(errors(&format!("pub struct S {{ {SLIDER} {tail} }}")), Vec::<String>::new(), "{tail}");
+    }
+}
+
 /// `rot(phi, v)`, the vector and the angle the other way round, is one error that says to swap
 /// them; each argument was told it is of the wrong kind.
 #[test]

@@ -457,6 +457,36 @@ fn a_swapped_polar_term_is_refused_at_run_time() {
     assert!(d.items[0].message.ends_with("write `l @ psi`"), "{d}");
 }
 
+/// The head of a slider-crank whose unknown `y` an `eq` sets to twice the rod's angle, `psi`:
+/// the next item starts at line 7.
+const SET_TO_AN_ANGLE: &str = "pub struct SliderCrank {\n    params r = 1, l = 3;\n    input phi;\n    \
+                               unknowns psi, x = 3, y;\n    loop oab: r @ phi == (x, 0) + l @ psi;\n    \
+                               eq double: y == 2 * psi;\n";
+
+/// The one error of `SET_TO_AN_ANGLE` and then `tail`: its line and column, and its message.
+fn one_error(tail: &str) -> ((usize, usize), String) {
+    let text = format!("{SET_TO_AN_ANGLE}{tail}}}\n");
+    let Err(ReadError::Rejected(d)) = Model::read("mix.kl", &text) else { panic!("accepted: {text}") };
+    assert_eq!(d.items.len(), 1, "{d}");
+    ((d.items[0].line, d.items[0].column), d.items[0].message.clone())
+}
+
+/// A vector of an angle and a length given to `norm` or `dot` (`(x, psi)`, `(x, 0) + (0, psi)`)
+/// is refused in a `.kl` file as by the macro: at the vector, saying that it combines the two.
+#[test]
+fn a_vector_of_an_angle_and_a_length_is_refused_at_run_time() {
+    for (tail, at, says) in [
+        ("    output reach = norm((x, psi));\n", (7, 25), "`(x, psi)` combines an angle and a length"),
+        ("    output along = dot((x, 0) + (0, psi), (1, 0));\n", (7, 24), "`(x, 0) + (0, psi)` combines an angle"),
+    ] {
+        let (got, message) = one_error(tail);
+        assert_eq!(got, at, "{message}");
+        assert!(message.starts_with(says), "{message}");
+    }
+    let fine = format!("{SET_TO_AN_ANGLE}    output reach = norm((x, l));\n    output turn = norm((phi, psi));\n}}\n");
+    assert!(Model::read("fine.kl", &fine).is_ok(), "{fine}");
+}
+
 /// A slider-crank whose loop ends in `first` and whose point `p` ends in `second`, with `more`
 /// on a line of its own: the two terms start at line 5, column 35, and line 6, column 24.
 fn two_terms(first: &str, second: &str, more: &str) -> String {

@@ -47,6 +47,11 @@ pub struct Lowerer {
     /// that they do not put an angle beside a length ([`super::polar`]): such a value changes
     /// with the unit of length wherever it is written, inline or named by a `let`.
     pub(super) scalar_pairs: Vec<ScalarPair>,
+    /// The vectors built from two coordinates that vary (a tuple, a sum of vectors, a vector
+    /// scaled) outside a position, for the check that one is not an angle where the other is a
+    /// length ([`super::polar`]): `norm((x, psi))` and `dot((x, psi), u)` change with the unit of
+    /// length as `x + psi` does. A position's coordinates are judged each instead.
+    pub(super) vector_pairs: Vec<VectorPair>,
     /// Set while a `let`, a `point` or an `output` is lowered: its sums are noted in
     /// `scalar_pairs`, as an equation's are.
     pub(super) notes_sums: bool,
@@ -189,6 +194,20 @@ impl ScalarPair {
     ) -> Option<Self> {
         Self::of(g, range, verb, args, l, r).map(|p| ScalarPair { shown: short(call), ..p })
     }
+}
+
+/// A vector whose two coordinates vary, noted where it is built outside a position (`(x, psi)`
+/// given to `norm` or `dot`, `(x, 0) + (0, psi)`) for the check that it does not put an angle
+/// beside a length ([`super::polar`]), as a sum's terms are judged.
+pub(super) struct VectorPair {
+    /// The two coordinates, side by side, as the vector is written ("combines").
+    pub(super) pair: ScalarPair,
+    /// The vector `let` it is written in: where a loop or point takes the `let` as a position,
+    /// its coordinates are judged each, and the vector is not told again.
+    pub(super) within: Option<String>,
+    /// The coordinates of the vectors it is built from (the operands of a sum or a scaling): a
+    /// vector built from one that mixes the two is that one mistake, told once.
+    pub(super) parts: Vec<[NodeId; 2]>,
 }
 
 /// An item whose Cartesian vectors have lengths for coordinates.
@@ -334,6 +353,7 @@ impl Lowerer {
             left_to_dynamics: Default::default(),
             dynamics_positions: 0,
             scalar_pairs: Vec::new(),
+            vector_pairs: Vec::new(),
             notes_sums: false,
             defining: None,
             later_uses: Default::default(),
@@ -435,11 +455,14 @@ impl Lowerer {
             Expr::Tuple { x, y, .. } => {
                 let xs = self.lower_coordinate(x);
                 let ys = self.lower_coordinate(y);
-                Val::V(xs?, ys?)
+                let v = Val::V(xs?, ys?);
+                self.note_vector(e, v, Vec::new());
+                v
             }
             Expr::Field { base, component, name } => return self.field(base, *component, name),
             Expr::Binary { op, op_span, lhs, rhs } => {
                 let before = [self.named_coordinates.len(), self.let_uses.len()];
+                let vectors_before = self.vector_pairs.len();
                 let l = self.lower(lhs);
                 let between = [self.named_coordinates.len(), self.let_uses.len()];
                 let r = self.lower(rhs);
@@ -460,13 +483,24 @@ impl Lowerer {
                 let Some(res) = self.binary(*op, *op_span, (lhs, rhs), l, r) else {
                     // A vector as an operand of `@` (`a @ (phi, 1)`) is no position, as the
                     // vectors `norm` and `dot` take are none: its coordinates are not told to be
-                    // lengths too, a second error for the one mistake the type error names.
+                    // lengths too (nor of one kind), a second error for the one mistake the type
+                    // error names.
                     if *op == BinOp::Polar {
                         self.named_coordinates.truncate(before[0]);
                         self.let_uses.truncate(before[1]);
+                        self.vector_pairs.truncate(vectors_before);
                     }
                     return None;
                 };
+                // A sum of vectors or a vector scaled builds a vector of the coordinates it
+                // gives (`(x, 0) + (0, psi)` is `(x, psi)`); a polar term's are lengths.
+                if *op != BinOp::Polar {
+                    let parts = [l, r].into_iter().filter_map(|v| match v {
+                        Val::V(x, y) => Some([x, y]),
+                        Val::S(_) => None,
+                    });
+                    self.note_vector(e, res, parts.collect());
+                }
                 let verb = match op {
                     BinOp::Add => Some("adds"),
                     BinOp::Sub => Some("subtracts"),
@@ -529,6 +563,37 @@ impl Lowerer {
             self.named_coordinates.extend(noted);
         }
         Some(n)
+    }
+
+    /// Notes the vector `v` that `e` builds (a tuple, or a sum or scaling of the vectors whose
+    /// coordinates are `parts`) for the check that its coordinates are not an angle and a length,
+    /// where sums are noted and the vector is no position: a loop's, a point's or the dynamics'
+    /// coordinates are judged each ([`super::polar`]), a vector `let`'s where a loop or point
+    /// takes it. A constant coordinate is of the other's kind, as a constant term of a sum is.
+    fn note_vector(&mut self, e: &Expr, v: Val, parts: Vec<[NodeId; 2]>) {
+        let within = match &self.lengths {
+            None => None,
+            Some(Place::Let(name)) => Some(name.clone()),
+            Some(_) => return,
+        };
+        let Val::V(x, y) = v else { return };
+        if !(self.in_equation || self.notes_sums)
+            || self.graph.as_const(x).is_some()
+            || self.graph.as_const(y).is_some()
+        {
+            return;
+        }
+        let shown = short(&bare(e).show());
+        // A coordinate not written as one (of `(x, 0) + (0, psi)`) is named as the vector's
+        // component; the length to write for it is then named after the angle it is made from.
+        let (sides, factors) = match bare(e) {
+            Expr::Tuple { x: ex, y: ey, .. } => {
+                ([(x, bare(ex).show()), (y, bare(ey).show())], [operand(ex), operand(ey)])
+            }
+            _ => ([(x, format!("({shown}).x")), (y, format!("({shown}).y"))], [String::new(), String::new()]),
+        };
+        let pair = ScalarPair { range: e.range(), shown, verb: "combines", sides, factors };
+        self.vector_pairs.push(VectorPair { pair, within, parts });
     }
 
     /// Whether `v` is the scalar constant zero.

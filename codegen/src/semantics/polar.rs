@@ -40,7 +40,11 @@
 //! with `s` and `x` written elsewhere as coordinates of positions or lengths of `@`) is refused
 //! at the operation, in an equation, a `let`, a `point` or an `output` alike: its value too
 //! changes with the unit of length. A sum that is the angle of a polar term already told to mix
-//! the two (`psi @ (phi + e)`) is not told again.
+//! the two (`psi @ (phi + e)`) is not told again. So is a vector of an angle and a length built
+//! where it is no position (`(x, psi)` given to `norm`, `dot`, `cross`, `angle` or `rot`,
+//! `(x, 0) + (0, psi)`): its magnitude, products and direction change so too. It is told where
+//! it is built, once (`2 * (x, psi)` is that vector's mistake); a position's vector is told at
+//! its coordinate.
 //!
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
@@ -51,7 +55,7 @@
 //! constant, or a name of no known kind stays the length it is written as.
 
 use super::dynamics::{leaf_name, sets_to_angle};
-use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair};
+use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair, VectorPair};
 use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
@@ -627,7 +631,7 @@ fn length_error(t: &NamedLength, why: &str, fix: &str) -> syn::Error {
 /// errors are reported.
 pub(super) fn coordinates(lw: &mut Lowerer, angles: &mut Angles) -> Vec<syn::Error> {
     let coordinates = std::mem::take(&mut lw.named_coordinates);
-    let positions = lets_taken_as_lengths(&std::mem::take(&mut lw.let_uses));
+    let positions = lets_taken_as_lengths(&lw.let_uses);
     let mut errors = Vec::new();
     for c in coordinates {
         if let Place::Let(l) = &c.place
@@ -691,10 +695,12 @@ fn why_expression(lw: &Lowerer, angles: &mut Angles, n: NodeId) -> Option<String
 
 /// Reports every scalar sum, difference, `eq`, and call of `min`, `max`, `clamp`, `atan2`,
 /// `hypot` or `wrap` noted in `lw` that puts an angle beside a length (`eq e: s == phi;` with
-/// `s` a slider's travel): its value changes with the unit of length. Run after
-/// [`coordinates`] and [`terms`], which find the lengths.
+/// `s` a slider's travel): its value changes with the unit of length; then every vector of the
+/// two ([`vectors_of_two_kinds`]). Run after [`coordinates`] and [`terms`], which find the
+/// lengths.
 pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
     let pairs = std::mem::take(&mut lw.scalar_pairs);
+    let vectors = std::mem::take(&mut lw.vector_pairs);
     if angles.lengths.is_empty() {
         return;
     }
@@ -712,6 +718,29 @@ pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
         if let Some(e) = angle_beside_length(lw, angles, &p) {
             lw.errors.push(e);
             told.push(at);
+        }
+    }
+    vectors_of_two_kinds(lw, angles, vectors);
+}
+
+/// Reports every vector noted in `lw` whose coordinates are an angle and a length (`(x, psi)`
+/// given to `norm`, `dot`, `cross`, `angle` or `rot`, `(x, 0) + (0, psi)`): its magnitude,
+/// direction and products change with the unit of length, as the sum of the two does. A vector
+/// built from one told (`2 * (x, psi)`) is that mistake, and one in a vector `let` that a loop
+/// or point takes is told as a coordinate of a position by [`coordinates`].
+fn vectors_of_two_kinds(lw: &mut Lowerer, angles: &mut Angles, vectors: Vec<VectorPair>) {
+    let positions = lets_taken_as_lengths(&lw.let_uses);
+    let mut mixed: HashSet<[NodeId; 2]> = HashSet::new();
+    for v in vectors {
+        let [(x, _), (y, _)] = v.pair.sides;
+        if v.parts.iter().any(|p| mixed.contains(p)) {
+            mixed.insert([x, y]);
+            continue;
+        }
+        let Some(e) = angle_beside_length(lw, angles, &v.pair) else { continue };
+        mixed.insert([x, y]);
+        if !v.within.is_some_and(|l| positions.contains_key(&l)) {
+            lw.errors.push(e);
         }
     }
 }
@@ -760,11 +789,13 @@ fn angle_beside_length(lw: &Lowerer, angles: &mut Angles, p: &ScalarPair) -> Opt
     let leaves = g.leaves_of(&[*node]);
     let (_, name, why) = reasons.iter().find(|r| leaves.contains(&r.0))?;
     let why = if name == shown { why.clone() } else { format!("made from `{name}`, an angle: {why}") };
+    // A side not written as such (a coordinate of a sum of vectors) gets the angle's name.
+    let factor = if p.factors[angle].is_empty() { name } else { &p.factors[angle] };
     Some(p.range.error(format!(
         "`{}` {} an angle and a length, so its value would change with the unit of length: `{shown}` is an \
          angle ({why}), and `{}` a length (a coordinate of a position or the length of `@`); write a length \
          for the angle, such as `r * {}` for the arc a radius `r` rolls",
-        p.shown, p.verb, p.sides[length].1, p.factors[angle]
+        p.shown, p.verb, p.sides[length].1, factor
     )))
 }
 
