@@ -66,6 +66,10 @@
 //!   the vector, which "combines an angle and a length". The vectors these functions take need
 //!   not be lengths, only of one kind: a vector of angles (`norm((phi, psi))`), or of a length
 //!   and a constant or a number of no unit (`(x, 0.5)`, `(x, sin(psi))`), compiles as before.
+//!   An unknown that an `eq` sets to an expression of angles (`eq e: y == 2 * psi;`, the column
+//!   `y [rad]`) is an angle for these checks (`y + x` is refused), unless it is written as a
+//!   length elsewhere (a coordinate of a position, the length of `@`): then the `eq` is told
+//!   that it equates an angle and a length.
 //! * Scalars: numbers, `+ - * /`, unary `-`, powers `x ^ 2` (an integer exponent becomes
 //!   `powi`), `pi`, and the functions `sin cos tan asin acos atan atan2(y, x) sqrt exp ln abs
 //!   pow(x, y) hypot(a, b) deg(degrees) min(a, b) max(a, b) clamp(x, lo, hi) floor

@@ -620,6 +620,33 @@ fn a_vector_of_an_angle_and_a_length_is_a_unit_mix() {
     }
 }
 
+/// An unknown that an `eq` sets to an expression of an angle (`y == 2 * psi`) is an angle, the
+/// kind its column is given: beside a length it is the unit mix, as a coordinate of a position
+/// it is refused. Set to a length times an angle (an arc), or through a circle of equations
+/// that nothing else makes angles, it is no angle.
+#[test]
+fn an_unknown_an_eq_sets_to_an_angle_is_an_angle() {
+    for (tail, shown) in [
+        ("unknowns y; eq e: y == 2 * psi; output w = y + x;", "`y + x` adds an angle and a length"),
+        ("params g0; unknowns y; eq e: y == psi + g0; output w = x - y;", "`x - y` subtracts an angle and a length"),
+        ("unknowns y, z; eq e: 0 == y - phi / 2; eq f: z == y + pi; output w = max(z, x);", "`max(z, x)` compares"),
+        // Placed as a length, it is one, and the `eq` is told.
+        ("unknowns y; eq e: y == 2 * psi; point p = (x, y);", "`y == 2 * psi` equates an angle and a length"),
+        ("unknowns y; eq e: y == 2 * psi; output w = norm((y, x));", "`(y, x)` combines"),
+    ] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} {tail} }}"));
+        assert_eq!(e.len(), 1, "{tail}: {e:#?}");
+        assert!(e[0].starts_with(shown), "{tail}: {e:#?}");
+        assert!(e[0].contains("or an `eq` sets it to an angle") || e[0].contains("equates"), "{tail}: {e:#?}");
+    }
+    for tail in [
+        "unknowns y, z; eq e: y == r * psi; eq f: z == y; output w = y + x + z;",
+        "unknowns y, z; eq e: y == 2 * z; eq f: z == y / 2 + x; output w = y + x;",
+    ] {
+        assert_eq!(errors(&format!("pub struct S {{ {SLIDER} {tail} }}")), Vec::<String>::new(), "{tail}");
+    }
+}
+
 /// `rot(phi, v)`, the vector and the angle the other way round, is one error that says to swap
 /// them; each argument was told it is of the wrong kind.
 #[test]

@@ -487,6 +487,17 @@ fn a_vector_of_an_angle_and_a_length_is_refused_at_run_time() {
     assert!(Model::read("fine.kl", &fine).is_ok(), "{fine}");
 }
 
+/// An unknown that an `eq` sets to an angle (`y == 2 * psi`) is refused beside a length in a
+/// `.kl` file as by the macro, and read as it was beside an angle.
+#[test]
+fn an_unknown_an_eq_sets_to_an_angle_is_one_at_run_time() {
+    let (at, message) = one_error("    output w = y + x;\n");
+    assert_eq!(at, (7, 16), "{message}");
+    assert!(message.starts_with("`y + x` adds an angle and a length"), "{message}");
+    let fine = format!("{SET_TO_AN_ANGLE}    output turn = y + phi;\n}}\n");
+    assert!(Model::read("fine.kl", &fine).is_ok(), "{fine}");
+}
+
 /// A slider-crank whose loop ends in `first` and whose point `p` ends in `second`, with `more`
 /// on a line of its own: the two terms start at line 5, column 35, and line 6, column 24.
 fn two_terms(first: &str, second: &str, more: &str) -> String {

@@ -487,12 +487,22 @@ pub(super) fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &
 /// `angle(v)`, which is an `atan2`) and `c` terms free of the state (an offset such as `pi / 2`).
 /// The leaf must be a whole side: `x == l * atan(s)` makes `x` a length.
 pub(super) fn sets_to_angle(g: &Graph, leaf: Leaf, r: NodeId) -> bool {
+    sets_to_angle_by(g, leaf, r, &mut |_| false)
+}
+
+/// As [`sets_to_angle`], the terms that `made_angle` finds to be angles by what they are made
+/// of (`2 * psi`, `psi + gamma`, with `psi` an angle) counted as the inverse trigonometric
+/// functions are: `y == 2 * psi` sets `y` to an angle. A term that holds `leaf` itself sets it
+/// to nothing.
+pub(super) fn sets_to_angle_by(g: &Graph, leaf: Leaf, r: NodeId, made_angle: &mut dyn FnMut(NodeId) -> bool) -> bool {
     let Some(terms) = terms(g, r) else { return false };
     let (mut own, mut angles) = (0, 0);
     for t in terms {
         match g.op(t) {
             Op::Leaf(l) if l == leaf => own += 1,
             Op::Func(Func::Asin | Func::Acos | Func::Atan, _) | Op::Atan2(..) => angles += 1,
+            _ if g.leaves_of(&[t]).contains(&leaf) => return false,
+            _ if made_angle(t) => angles += 1,
             _ if !depends_on_state(g, &[t]) => {}
             _ => return false,
         }

@@ -49,12 +49,15 @@
 //! Only a name that is an angle by the mechanism itself is refused (the test of a body's
 //! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
 //! sets it to an angle), or one whose value is written in degrees (a scalar `let` of such a
-//! value too). A name written as a length elsewhere (a coordinate of a position, the length of
+//! value too). Beyond that test, an unknown that an `eq` sets to an expression of such angles
+//! (`y == 2 * psi`, `y == psi + gamma`) is an angle too, the kind the plan labels its column
+//! with (`y [rad]`), unless it is written as a length elsewhere, where the `eq` is the mistake
+//! told. A name written as a length elsewhere (a coordinate of a position, the length of
 //! `@`) that a sine takes only as a fraction of itself (`sin(x / 2)`, the 2 perhaps a radius
 //! written as a number) is of no certain kind. A length times an angle (`(r * phi) @ 0`), a
 //! constant, or a name of no known kind stays the length it is written as.
 
-use super::dynamics::{leaf_name, sets_to_angle};
+use super::dynamics::{leaf_name, sets_to_angle, sets_to_angle_by};
 use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair, VectorPair};
 use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use crate::graph::dims::{self, Dim};
@@ -91,6 +94,12 @@ pub(super) struct Angles {
     /// The angles of polar terms told to mix an angle and a length (`phi + e` in
     /// `psi @ (phi + e)`): a sum within one is that mistake, told once.
     told_mixed: Vec<NodeId>,
+    /// The unknowns whose verdict is being found through the equations that set them: one met
+    /// again (`y == 2 * z` beside `z == y / 2`) is no angle by that circle.
+    pending: HashSet<Leaf>,
+    /// Set where a verdict met a pending unknown: a `false` found so may change once that
+    /// unknown is judged, and is not kept.
+    circled: bool,
 }
 
 impl Angles {
@@ -109,6 +118,8 @@ impl Angles {
             placed_as_lengths: HashSet::new(),
             swapped: HashSet::new(),
             told_mixed: Vec::new(),
+            pending: HashSet::new(),
+            circled: false,
         }
     }
 
@@ -119,12 +130,55 @@ impl Angles {
             return None;
         }
         let degrees = self.degrees.contains(&leaf);
+        let known = self.known_angle(g, leaf);
+        why_an_angle(degrees, known, name)
+    }
+
+    /// Whether the mechanism makes `leaf` an angle ([`is_angle`]), or an `eq` sets the unknown
+    /// `leaf`, not placed as a length, to an expression of angles (`eq e: y == 2 * psi;`, `psi`
+    /// an angle): `y` is then as much an angle as `psi`, the kind the plan gives its column
+    /// (`y [rad]`). The angles it is set to are judged so in turn, each verdict once.
+    fn known_angle(&mut self, g: &Graph, leaf: Leaf) -> bool {
+        if let Some(&known) = self.known.get(&leaf) {
+            return known;
+        }
+        if self.pending.contains(&leaf) {
+            self.circled = true;
+            return false;
+        }
         let (roots, residuals, placed) = (&self.roots, &self.residuals, &self.placed_as_lengths);
         let set_aside = &self.set_aside;
         let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, roots, set_aside));
-        let known =
-            *self.known.entry(leaf).or_insert_with(|| is_angle(g, leaf, arguments, residuals, placed.contains(&leaf)));
-        why_an_angle(degrees, known, name)
+        let placed = placed.contains(&leaf);
+        let mut known = is_angle(g, leaf, arguments, residuals, placed);
+        let outer = std::mem::replace(&mut self.circled, false);
+        // A name placed as a length (`(x, s)` in a loop) stays one: an `eq` that sets it to an
+        // angle is the mistake, told there as one that equates the two.
+        if !known && !placed && matches!(leaf, Leaf::Unknown(_)) {
+            self.pending.insert(leaf);
+            let residuals = self.residuals.clone();
+            known = residuals.iter().any(|&r| sets_to_angle_by(g, leaf, r, &mut |t| self.made_angle(g, t)));
+            self.pending.remove(&leaf);
+        }
+        if known || !self.circled {
+            self.known.insert(leaf, known);
+        }
+        self.circled |= outer;
+        known
+    }
+
+    /// Whether the expression `t` is an angle by the names it is made from: some are angles,
+    /// in degrees or by the mechanism, but those of terms found swapped, and the operations
+    /// keep it one (`2 * psi`, `psi + gamma`; not `r * psi`).
+    fn made_angle(&mut self, g: &Graph, t: NodeId) -> bool {
+        let mut found = HashSet::new();
+        for leaf in g.leaves_of(&[t]) {
+            let angle = self.degrees.contains(&leaf) || self.known_angle(g, leaf);
+            if angle && !self.swapped.contains(&leaf) {
+                found.insert(leaf);
+            }
+        }
+        !found.is_empty() && dims::is_angle(g, t, &|l| if found.contains(&l) { Dim::Angle } else { Dim::Other })
     }
 
     /// Whether `leaf` is an angle because its value is written in degrees.
