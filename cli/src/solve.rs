@@ -240,20 +240,16 @@ impl Notes {
         if start_below_pivot {
             eprintln!("note: `SweepConfig::singular_pivot` is `--singular-pivot RATIO` on the command line");
         }
-        // The input turns back there: no sweep goes on, the curve does.
+        // The error says what goes on from a stop in the library's names (`trace_curve`,
+        // `AtSingular::Continue`, `SweepConfig::singular_pivot`); the notes name the command
+        // line's, without saying it all again.
         if at_limit {
-            eprintln!(
-                "note: the input cannot go on past a limit position; `kinloop trace` follows the curve through it (the \
-             input turning back), and can start from it"
-            );
+            eprintln!("note: `trace_curve` is `kinloop trace` on the command line");
         }
-        // Two branches cross there: a sweep cannot tell which one the mechanism takes, a trace
-        // keeps to the curve it is on.
         if at_crossing {
             eprintln!(
-                "note: two branches of the motion cross there (a change point), and the input alone does not say \
-             which one the mechanism follows on; `--through-crossings` goes on along the smooth continuation, \
-             and `kinloop trace` keeps to the curve it is on through it"
+                "note: on the command line, `AtSingular::Continue` is `--through-crossings`, `trace_curve` is \
+                 `kinloop trace`, and `SweepConfig::singular_pivot` is `--singular-pivot RATIO`"
             );
         }
     }

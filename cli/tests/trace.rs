@@ -88,10 +88,11 @@ fn a_crank_driven_by_its_rocker_closes_a_turn_on() {
     assert!((turned.abs() - 1.0).abs() < 0.01, "the crank turned {turned} turns");
 }
 
-/// Where a sweep stops at a limit position it says that `trace` goes on; a sweep started at the
-/// input it names (copied from its message, in degrees) says that it starts at a singular
-/// position, and a trace started there starts there: it lists that
-/// limit position first, the other where the law of cosines puts it, and closes its curve.
+/// Where a sweep stops at a limit position it says that `trace_curve` goes on, and notes that
+/// it is `kinloop trace`; a sweep started at the input it names (copied from its message, in
+/// degrees) says that it starts at a singular position, and a trace started there starts there:
+/// it lists that limit position first, the other where the law of cosines puts it, and closes
+/// its curve.
 #[test]
 fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
     let (a, b, c, d): (f64, f64, f64, f64) = (3.0, 2.0, 2.5, 4.0);
@@ -101,7 +102,10 @@ fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
     let swept = kinloop(&[&["sweep", four_bar.as_str(), "--from", "0", "--to", "180"][..], &common].concat());
     let stderr = String::from_utf8_lossy(&swept.stderr);
     assert_eq!(swept.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("note: the input cannot go on past a limit position; `kinloop trace`"), "{stderr}");
+    // The error says what goes on in the library's names, the note the command line's, once each.
+    assert!(stderr.contains("the input cannot go on past a limit position on this branch; `trace_curve`"), "{stderr}");
+    assert!(stderr.contains("\nnote: `trace_curve` is `kinloop trace` on the command line\n"), "{stderr}");
+    assert_eq!(stderr.matches("cannot go on past a limit position").count(), 1, "{stderr}");
     let stop = stderr.lines().find(|l| l.starts_with("error: the sweep stopped at a limit position")).expect(&stderr);
     let at = stop.split("phi = ").nth(1).and_then(|r| r.split(' ').next()).expect(stop);
     let lim = stretched_limit(a, b, c, d).to_degrees();
@@ -133,9 +137,10 @@ fn a_trace_starts_where_a_sweep_stopped_at_a_limit_position() {
 }
 
 /// A sweep that stops at a change point (a parallelogram four-bar's links in line) says that
-/// two branches cross there, that `--through-crossings` goes on and that `trace` keeps to the
-/// curve it is on: the sweep told to go on passes both change points (two of its samples lie
-/// on them), and the trace over the same range passes both and closes its curve.
+/// two branches cross there, that `AtSingular::Continue` goes on and that `trace_curve` keeps to
+/// the curve it is on, and notes that these are `--through-crossings` and `kinloop trace`: the
+/// sweep told to go on passes both change points (two of its samples lie on them), and the
+/// trace over the same range passes both and closes its curve.
 #[test]
 fn a_sweep_stopped_at_a_change_point_names_trace() {
     let args = ["--from", "10", "--to", "370", "--deg", "--params", "a=1,b=3,c=1,d=3"];
@@ -144,9 +149,18 @@ fn a_sweep_stopped_at_a_change_point_names_trace() {
     let stderr = String::from_utf8_lossy(&swept.stderr);
     assert_eq!(swept.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("error: the sweep stopped at a singular crossing"), "{stderr}");
-    assert!(stderr.contains("note: two branches of the motion cross there (a change point)"), "{stderr}");
-    assert!(stderr.contains("`--through-crossings` goes on along the smooth continuation"), "{stderr}");
-    assert!(stderr.contains("`kinloop trace` keeps to the curve it is on"), "{stderr}");
+    // The error says what goes on in the library's names, the note the command line's, once each.
+    assert!(stderr.contains(": two branches of the motion cross there (a change point)"), "{stderr}");
+    assert!(
+        stderr.contains("`AtSingular::Continue` (`SweepConfig::with_at_singular`) goes on along the smooth"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("`trace_curve` keeps to the curve it is on"), "{stderr}");
+    assert!(
+        stderr.contains("`AtSingular::Continue` is `--through-crossings`, `trace_curve` is `kinloop trace`"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.matches("two branches of the motion cross there").count(), 1, "{stderr}");
     // Told to go on, the sweep passes both; its samples at 180 and 360 degrees, on the change
     // points, are the first well-conditioned states past them, each written at its own input.
     let through =

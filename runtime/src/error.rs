@@ -180,8 +180,11 @@ pub enum Error {
     },
     /// A sweep stopped at a singular position it cannot (or is configured not to) pass on its
     /// branch: a limit position of the input, or a singular crossing. The event, with the
-    /// located input value, is in the sweep's `events()`.
-    #[error("the sweep stopped at a {kind} {at}")]
+    /// located input value, is in the sweep's `events()`. The message says what goes on from
+    /// there: `trace_curve` past a limit position, and past a crossing `AtSingular::Continue`,
+    /// `trace_curve`, or a lower `SweepConfig::singular_pivot` where two assembly modes only
+    /// pass close.
+    #[error("the sweep stopped at a {kind} {at}{}", stopped_advice(*kind))]
     SweepStopped {
         /// What was met.
         kind: EventKind,
@@ -455,6 +458,31 @@ fn underflow_cause(magnitude: f64, least: f64) -> String {
 /// notation beyond (`{turns:.0}` wrote a guess of 1e308 rad as 308 digits of turns).
 fn whole_turns(turns: f64) -> String {
     if turns.abs() < 1e15 { format!("{turns:.0}") } else { format!("{turns:.3e}") }
+}
+
+/// What goes on from where a sweep stopped ([`Error::SweepStopped`]), in the library's names (the
+/// command line names its own options and commands in notes under the message). The input turns
+/// back at a limit position, so no sweep passes it and a trace does; at a crossing the sweep
+/// cannot tell which branch the mechanism takes, so it goes on when told which (the smooth
+/// continuation), and a trace keeps to its curve. A crossing met where two assembly modes only
+/// pass nearer than the residual tolerance tells apart (a crank-rocker a hair from a change
+/// point, see [`EventKind::SingularCrossing`]) is passed with a lower `singular_pivot`. A kink
+/// stops no sweep; it has none.
+fn stopped_advice(kind: EventKind) -> &'static str {
+    match kind {
+        EventKind::LimitPosition => {
+            ": the input cannot go on past a limit position on this branch; `trace_curve` follows the curve \
+             through it (the input turning back), and can start from it"
+        }
+        EventKind::SingularCrossing => {
+            ": two branches of the motion cross there (a change point), and the input alone does not say which \
+             one the mechanism follows on; `AtSingular::Continue` (`SweepConfig::with_at_singular`) goes on along \
+             the smooth continuation, and `trace_curve` keeps to the curve it is on through it (where two assembly \
+             modes only pass close, a mechanism meant to pass there sweeps with a lower \
+             `SweepConfig::singular_pivot`)"
+        }
+        _ => "",
+    }
 }
 
 /// Why a sweep's start is singular ([`Error::SingularStart`]): its pivot ratio below the sweep's

@@ -45,9 +45,13 @@ fn non_grashof_four_bar_stops_at_its_limit_position() {
     // At the limit position, coupler and rocker are collinear (extended): gamma = beta.
     let (beta, gamma) = (ev.q[0], ev.q[1]);
     assert!(((gamma - beta).sin()).abs() < 1e-6, "beta {beta} gamma {gamma}");
-    // The error message names the input value.
+    // The error message names the input value, and what goes on from there: a trace.
     let msg = stop.unwrap().to_string();
     assert!(msg.contains("limit position") && msg.contains("phi = 1.37"), "{msg}");
+    assert!(
+        msg.contains("cannot go on past a limit position on this branch; `trace_curve` follows the curve"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -139,6 +143,14 @@ fn change_point_crossing_is_located_and_never_silent() {
     let mut sweep = m.sweep(0.5, 7.0, 66, &g).unwrap();
     let stop = sweep.by_ref().find_map(|s| s.err());
     assert!(matches!(stop, Some(Error::SweepStopped { kind: EventKind::SingularCrossing, .. })), "{stop:?}");
+    // The message says what goes on from there: the smooth continuation when told to take it,
+    // a trace, or, where two modes only pass close, a lower `singular_pivot`.
+    let msg = stop.unwrap().to_string();
+    for remedy in
+        ["`AtSingular::Continue` (`SweepConfig::with_at_singular`)", "`trace_curve`", "`SweepConfig::singular_pivot`"]
+    {
+        assert!(msg.contains(remedy), "{remedy}: {msg}");
+    }
     let ev = &sweep.events()[0];
     assert_close!(ev.x[0], 2.0 * PI, tol::LOCATED, "crossing at {}", ev.x[0]);
 
