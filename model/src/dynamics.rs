@@ -14,8 +14,8 @@ use crate::dynamics_prog::DynamicsProg;
 use crate::model::Model;
 use kinloop_runtime::dims::{Heap, KinBuf, Sizes};
 use kinloop_runtime::dynamics::{
-    AnalogState, Cycle, CyclePoint, DenseStep, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, RunConfig, Shaking,
-    SpeedLaw, Trajectory, simulate_steps_of,
+    AnalogState, Cycle, CyclePoint, DenseStep, Dynamics, DynamicsBuf, DynamicsError, MassModelBuf, Recording,
+    RunConfig, Shaking, SpeedLaw, Trajectory, simulate_steps_of,
 };
 use kinloop_runtime::{Error, Source};
 
@@ -178,12 +178,12 @@ impl<'a, D, S> ModelSimulation<'a, D, S> {
         D: Fn(f64, f64, f64) -> f64,
         S: FnMut(f64, &[f64; 2]) -> bool,
     {
-        let mut steps = Vec::new();
+        let mut steps = Recording::new(&self.cfg.ode);
         let (t_end, end) = self.run_steps(t_end, |s, _| {
-            steps.push(*s);
+            steps.push(s);
             false
         })?;
-        Ok(Trajectory { steps, t_end, end })
+        Ok(steps.finish(t_end, end))
     }
 
     /// Simulates for `t_end` time units from the start, as [`ModelSimulation::run`] does,

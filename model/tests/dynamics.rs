@@ -376,6 +376,23 @@ fn step_bits(steps: &[DenseStep<2>]) -> Vec<u64> {
     bits
 }
 
+/// A run-time model's recorded run keeps room for no more steps than its budget allows, as the
+/// compiled one's: 300 steps of a run of 400 at most, where the doubling of its storage made
+/// room for 512.
+#[test]
+fn the_engine_s_recorded_run_reserves_no_more_than_its_step_budget() {
+    let mut model = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).unwrap();
+    let cfg = RunConfig::default().with_flywheel(0.05).with_ode(OdeConfig::default().with_max_steps(400));
+    let mut made = 0;
+    let stop = move |_: f64, _: &[f64; 2]| {
+        made += 1;
+        made == 300
+    };
+    let run = model.simulation().start(0.3, 150.0).drive(|_, _, _| 4.0).config(cfg).stop_when(stop).run(50.0).unwrap();
+    assert_eq!(run.steps.len(), 300);
+    assert!(run.steps.capacity() <= 400, "room for {} steps of a budget of 400", run.steps.capacity());
+}
+
 /// A run-time model's streamed steps (`run_steps`) are its recorded trajectory's, bit for bit,
 /// with the state at each one's end, and the compiled mechanism streams the same steps as it
 /// records; the consumer ends the run where it says (with the stop predicate still asked), and

@@ -458,6 +458,43 @@ fn a_long_simulation_ends_on_its_step_budget_not_as_a_singular_motion() {
     assert_close!(long.end[1], short.end[1], 1e-6, "{:?} vs {:?}", long.end, short.end);
 }
 
+/// A recorded run keeps room for no more steps than its budget allows: the trajectory of 1500
+/// steps of a run of 2000 at most holds at most 2000, where the doubling of its storage made
+/// room for 2048 (at the default budget of ten million, for 16.8 million: 1.6 GB reserved for
+/// the 0.96 GB a run can use). The steps are those the run hands over, bit for bit, and a span
+/// beyond the budget still ends on it.
+#[test]
+fn a_recorded_run_reserves_no_more_than_its_step_budget() {
+    let sc = SliderCrank::default();
+    let model = crank_and_piston(0.5);
+    let budget = 2000;
+    let cfg = RunConfig::default().with_flywheel(0.05).with_ode(OdeConfig::default().with_max_steps(budget));
+    let sim = || Simulation::new(&sc, &model).start(0.0, 1000.0).guess(sc.guess_flat(&[0.0])).config(cfg);
+    let mut made = 0;
+    let run = sim()
+        .drive(|_, _, _| 2.5)
+        .stop_when(move |_, _| {
+            made += 1;
+            made == 1500
+        })
+        .run(1e12)
+        .unwrap();
+    assert_eq!(run.steps.len(), 1500);
+    assert!(run.steps.capacity() <= budget, "room for {} steps of a budget of {budget}", run.steps.capacity());
+    let mut handed = Vec::new();
+    let (t, end) = sim()
+        .drive(|_, _, _| 2.5)
+        .run_steps(1e12, |s, _| {
+            handed.push(*s);
+            handed.len() == 1500
+        })
+        .unwrap();
+    assert_eq!(step_bits(&handed), step_bits(&run.steps));
+    assert_eq!((t.to_bits(), end.map(f64::to_bits)), (run.t_end.to_bits(), run.end.map(f64::to_bits)));
+    let err = sim().drive(|_, _, _| 2.5).run(1e12).unwrap_err();
+    assert!(matches!(err, DynamicsError::TooManySteps { steps: 2000, .. }), "{err}");
+}
+
 /// A drive that grows without bound at t = 1/2 drives the speed to infinity there (`omega` like
 /// `1 / (1/2 - t)`): the step collapses, and the error says where, the input by its name.
 #[test]

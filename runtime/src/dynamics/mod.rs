@@ -68,6 +68,6 @@ pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
 pub use ode::{DenseStep, MIN_RTOL, OdeConfig, dopri5};
 pub use simulate::Simulation;
-pub use simulate_of::{RunConfig, Trajectory, simulate_of, simulate_steps_of};
+pub use simulate_of::{Recording, RunConfig, Trajectory, simulate_of, simulate_steps_of};
 pub use sized::{Applied, DynamicsBuf, MassModelBuf};
 pub use state::AnalogState;

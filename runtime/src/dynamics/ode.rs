@@ -23,7 +23,11 @@ pub struct OdeConfig {
     pub atol: f64,
     /// Largest step (infinity for none).
     pub h_max: f64,
-    /// Most steps (accepted and rejected) before [`DynamicsError::TooManySteps`].
+    /// Most steps (accepted and rejected) before [`DynamicsError::TooManySteps`] (default ten
+    /// million). A recorded run ([`Simulation::run`](super::Simulation::run)) keeps each accepted
+    /// step, 96 bytes: at most 0.96 GB at the default, spent before the error where the span is
+    /// beyond the budget. A run that needs only what passes keeps nothing
+    /// ([`Simulation::run_steps`](super::Simulation::run_steps)).
     pub max_steps: usize,
 }
 

@@ -62,6 +62,48 @@ pub struct Trajectory {
     pub end: [f64; 2],
 }
 
+/// A [`Trajectory`] being recorded, one accepted step at a time, by a run whose step budget is
+/// its configuration's [`OdeConfig::max_steps`] ([`simulate_of`], `Simulation::run`, a run-time
+/// model's `run`): its steps' storage grows as a `Vec`'s does (doubling), but never past the
+/// budget, which no run's accepted steps exceed.
+///
+/// Why not a plain `Vec`: at the default budget of ten million steps its doubling reserves room
+/// for 16.8 million (1.6 GB at 96 bytes a step) once a run passes 8.4 million, where 0.96 GB
+/// holds every step a run can make (a span far beyond the budget makes them all before its
+/// [`DynamicsError::TooManySteps`]). The steps recorded, and so the trajectory, are the same.
+#[derive(Debug)]
+pub struct Recording {
+    steps: Vec<DenseStep<2>>,
+    budget: usize,
+}
+
+impl Recording {
+    /// An empty recording of a run configured by `cfg` (its budget, `cfg.max_steps`).
+    pub fn new(cfg: &OdeConfig) -> Self {
+        Recording { steps: Vec::new(), budget: cfg.max_steps }
+    }
+
+    /// Records the accepted step `step`.
+    pub fn push(&mut self, step: &DenseStep<2>) {
+        if self.steps.len() == self.steps.capacity() {
+            // At least one more, should a caller push past the budget (no run does).
+            let room = self.budget.saturating_sub(self.steps.len()).max(1);
+            self.steps.reserve_exact(self.steps.len().max(4).min(room));
+        }
+        self.steps.push(*step);
+    }
+
+    /// The steps recorded, in time order.
+    pub fn steps(&self) -> &[DenseStep<2>] {
+        &self.steps
+    }
+
+    /// The trajectory of the steps recorded, which reached `t_end` and the state `end` there.
+    pub fn finish(self, t_end: f64, end: [f64; 2]) -> Trajectory {
+        Trajectory { steps: self.steps, t_end, end }
+    }
+}
+
 impl Trajectory {
     /// `[phi, omega]` at time `t` (clamped to the simulated interval), from the dense output;
     /// NaN at a time that is NaN.
@@ -90,8 +132,9 @@ impl Trajectory {
 /// early. The errors of [`Simulation::run`](super::Simulation::run); besides, a kernel with
 /// other than one input, or a guess of another size than its unknowns, is
 /// [`DynamicsError::SizeMismatch`]; an angle parameter beyond the `largest_precise_angle` of
-/// `cfg.newton` ([`Kernel::check_param_angles`]) is refused before the first step. Besides the recorded trajectory (one entry per accepted
-/// step, amortised growth), a step allocates nothing unless `reduced` does.
+/// `cfg.newton` ([`Kernel::check_param_angles`]) is refused before the first step. Besides the
+/// recorded trajectory (one entry per accepted step, amortised growth up to the step budget,
+/// see [`Recording`]), a step allocates nothing unless `reduced` does.
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_of<K: Kernel>(
     m: K,
@@ -103,12 +146,12 @@ pub fn simulate_of<K: Kernel>(
     cfg: &RunConfig,
     mut stop: impl FnMut(f64, &[f64; 2]) -> bool,
 ) -> Result<Trajectory, DynamicsError> {
-    let mut steps = Vec::new();
+    let mut steps = Recording::new(&cfg.ode);
     let (t_end, end) = simulate_steps_of(m, reduced, drive, start, t_end, guess, cfg, |s, y| {
-        steps.push(*s);
+        steps.push(s);
         stop(s.t1(), y)
     })?;
-    Ok(Trajectory { steps, t_end, end })
+    Ok(steps.finish(t_end, end))
 }
 
 /// The forward simulation of [`simulate_of`], keeping nothing: each accepted step is handed to
