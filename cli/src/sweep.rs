@@ -161,11 +161,14 @@ impl Units {
 }
 
 /// The value written for sample `s` of the equally spaced samples from `a` (sample 0) to `b`
-/// (sample `last`), given in degrees, whose state is at `written` (its radians times `180/π`):
-/// the sample's value between the ends given ([`between`]: `60`, where the product is
-/// `59.99999999999999`; the ends themselves). Only where the state is at the sample to the
-/// rounding: a sample at a singular crossing passed (`--through-crossings`) is the first
-/// well-conditioned state past it, whose own input is written.
+/// (sample `last`), given in the units written (an angle's degrees with `--deg`, else the
+/// model's units), whose state is at `written` (in those units: an angle's radians times
+/// `180/π`, a length or radians as solved): the sample's value between the ends given
+/// ([`between`]: `60`, where the product is `59.99999999999999`; `0.45` between 0.3 and 0.6,
+/// where the solved input is `0.44999999999999996`; the ends themselves). Only where the state
+/// is at the sample to the rounding: a sample at a singular crossing passed
+/// (`--through-crossings`) is the first well-conditioned state past it, whose own input is
+/// written.
 pub(crate) fn sample_as_given(a: f64, b: f64, s: usize, last: usize, written: f64) -> f64 {
     let given = between(a, b, s, last);
     let rounding = 1e-9 * ((b - a) / last as f64).abs() + 8.0 * f64::EPSILON * given.abs();
