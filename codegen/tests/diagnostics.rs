@@ -647,6 +647,28 @@ fn an_unknown_an_eq_sets_to_an_angle_is_an_angle() {
     }
 }
 
+/// Unknowns set by `eq`s to one another in circles are judged at once: twenty unknowns each set
+/// to the sum of the next two and the input, round in a circle, which nothing else makes
+/// angles, are no angles (`y0 + x` is no unit mix); the same twenty in a chain from `psi`, each
+/// set to the next plus the input and the last to twice `psi`, are angles every one. A search
+/// from each unknown through the equations that set it, which kept no verdict found inside a
+/// circle, took exponential time: the circle of eight held it for minutes.
+#[test]
+fn unknowns_set_to_one_another_in_circles_are_judged_at_once() {
+    let n = 20;
+    let mechanism = |set: &dyn Fn(usize) -> String| {
+        let names: Vec<String> = (0..n).map(|i| format!("y{i}")).collect();
+        let eqs: String = (0..n).map(|i| format!("eq e{i}: y{i} == {};", set(i))).collect();
+        format!("pub struct S {{ {SLIDER} unknowns {}; {eqs} output w = y0 + x; }}", names.join(", "))
+    };
+    let circle = mechanism(&|i| format!("y{} + y{} + phi", (i + 1) % n, (i + 2) % n));
+    assert_eq!(errors(&circle), Vec::<String>::new());
+    let chain = mechanism(&|i| if i + 1 == n { "2 * psi".to_string() } else { format!("y{} + phi", i + 1) });
+    let e = errors(&chain);
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`y0 + x` adds an angle and a length"), "{e:#?}");
+}
+
 /// `rot(phi, v)`, the vector and the angle the other way round, is one error that says to swap
 /// them; each argument was told it is of the wrong kind.
 #[test]

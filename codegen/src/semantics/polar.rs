@@ -94,12 +94,9 @@ pub(super) struct Angles {
     /// The angles of polar terms told to mix an angle and a length (`phi + e` in
     /// `psi @ (phi + e)`): a sum within one is that mistake, told once.
     told_mixed: Vec<NodeId>,
-    /// The unknowns whose verdict is being found through the equations that set them: one met
-    /// again (`y == 2 * z` beside `z == y / 2`) is no angle by that circle.
-    pending: HashSet<Leaf>,
-    /// Set where a verdict met a pending unknown: a `false` found so may change once that
-    /// unknown is judged, and is not kept.
-    circled: bool,
+    /// The unknowns that `eq`s set to expressions of angles (`y == 2 * psi`), found together
+    /// at the first verdict that asks ([`Angles::set_by_eqs`]).
+    set_by_eqs: Option<HashSet<Leaf>>,
 }
 
 impl Angles {
@@ -118,8 +115,7 @@ impl Angles {
             placed_as_lengths: HashSet::new(),
             swapped: HashSet::new(),
             told_mixed: Vec::new(),
-            pending: HashSet::new(),
-            circled: false,
+            set_by_eqs: None,
         }
     }
 
@@ -137,43 +133,76 @@ impl Angles {
     /// Whether the mechanism makes `leaf` an angle ([`is_angle`]), or an `eq` sets the unknown
     /// `leaf`, not placed as a length, to an expression of angles (`eq e: y == 2 * psi;`, `psi`
     /// an angle): `y` is then as much an angle as `psi`, the kind the plan gives its column
-    /// (`y [rad]`). The angles it is set to are judged so in turn, each verdict once.
+    /// (`y [rad]`). A name placed as a length (`(x, s)` in a loop) stays one: an `eq` that sets
+    /// it to an angle is the mistake, told there as one that equates the two.
     fn known_angle(&mut self, g: &Graph, leaf: Leaf) -> bool {
+        if self.angle_by_itself(g, leaf) {
+            return true;
+        }
+        if !matches!(leaf, Leaf::Unknown(_)) || self.placed_as_lengths.contains(&leaf) {
+            return false;
+        }
+        if self.set_by_eqs.is_none() {
+            let set = self.set_by_eqs(g);
+            self.set_by_eqs = Some(set);
+        }
+        self.set_by_eqs.as_ref().is_some_and(|set| set.contains(&leaf))
+    }
+
+    /// The verdict of [`is_angle`] on `leaf`, once per name.
+    fn angle_by_itself(&mut self, g: &Graph, leaf: Leaf) -> bool {
         if let Some(&known) = self.known.get(&leaf) {
             return known;
-        }
-        if self.pending.contains(&leaf) {
-            self.circled = true;
-            return false;
         }
         let (roots, residuals, placed) = (&self.roots, &self.residuals, &self.placed_as_lengths);
         let set_aside = &self.set_aside;
         let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, roots, set_aside));
-        let placed = placed.contains(&leaf);
-        let mut known = is_angle(g, leaf, arguments, residuals, placed);
-        let outer = std::mem::replace(&mut self.circled, false);
-        // A name placed as a length (`(x, s)` in a loop) stays one: an `eq` that sets it to an
-        // angle is the mistake, told there as one that equates the two.
-        if !known && !placed && matches!(leaf, Leaf::Unknown(_)) {
-            self.pending.insert(leaf);
-            let residuals = self.residuals.clone();
-            known = residuals.iter().any(|&r| sets_to_angle_by(g, leaf, r, &mut |t| self.made_angle(g, t)));
-            self.pending.remove(&leaf);
-        }
-        if known || !self.circled {
-            self.known.insert(leaf, known);
-        }
-        self.circled |= outer;
+        let known = is_angle(g, leaf, arguments, residuals, placed.contains(&leaf));
+        self.known.insert(leaf, known);
         known
     }
 
+    /// The unknowns, not placed as lengths, that `eq`s set to expressions of angles, those
+    /// judged in turn: the least set closed under "an `eq` sets it to angles of the mechanism or
+    /// of the set". A circle of equations that nothing else makes angles (`y == 2 * z` beside
+    /// `z == y / 2`) makes none. Found from the angles outwards, each equation judged again only
+    /// where one of its names became an angle: a search from each unknown through the equations
+    /// that set it, its circles' verdicts not kept, took exponential time (eight unknowns each
+    /// set to the sum of two others held `mechanism!` and the reader for minutes).
+    fn set_by_eqs(&mut self, g: &Graph) -> HashSet<Leaf> {
+        let residuals = self.residuals.clone();
+        // The equations each name is in, to judge again where it becomes an angle.
+        let mut users: HashMap<Leaf, Vec<usize>> = HashMap::new();
+        for (i, &r) in residuals.iter().enumerate() {
+            for leaf in g.leaves_of(&[r]) {
+                users.entry(leaf).or_default().push(i);
+            }
+        }
+        let mut set = HashSet::new();
+        let mut queue: Vec<usize> = (0..residuals.len()).rev().collect();
+        while let Some(i) = queue.pop() {
+            let r = residuals[i];
+            for leaf in g.leaves_of(&[r]) {
+                let candidate = matches!(leaf, Leaf::Unknown(_))
+                    && !set.contains(&leaf)
+                    && !self.placed_as_lengths.contains(&leaf)
+                    && !self.angle_by_itself(g, leaf);
+                if candidate && sets_to_angle_by(g, leaf, r, &mut |t| self.made_angle(g, t, &set)) {
+                    set.insert(leaf);
+                    queue.extend(users.get(&leaf).into_iter().flatten().copied());
+                }
+            }
+        }
+        set
+    }
+
     /// Whether the expression `t` is an angle by the names it is made from: some are angles,
-    /// in degrees or by the mechanism, but those of terms found swapped, and the operations
-    /// keep it one (`2 * psi`, `psi + gamma`; not `r * psi`).
-    fn made_angle(&mut self, g: &Graph, t: NodeId) -> bool {
+    /// in degrees, by the mechanism or in `set` (set to angles by `eq`s), but those of terms
+    /// found swapped, and the operations keep it one (`2 * psi`, `psi + gamma`; not `r * psi`).
+    fn made_angle(&mut self, g: &Graph, t: NodeId, set: &HashSet<Leaf>) -> bool {
         let mut found = HashSet::new();
         for leaf in g.leaves_of(&[t]) {
-            let angle = self.degrees.contains(&leaf) || self.known_angle(g, leaf);
+            let angle = self.degrees.contains(&leaf) || set.contains(&leaf) || self.angle_by_itself(g, leaf);
             if angle && !self.swapped.contains(&leaf) {
                 found.insert(leaf);
             }
