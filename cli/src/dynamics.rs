@@ -9,7 +9,7 @@
 
 use crate::exit::usage;
 use crate::own_columns::{self, Own};
-use crate::solve::{in_units, named, point};
+use crate::solve::{Notes, in_units, named, point};
 use crate::sweep::sample_as_given;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
@@ -231,7 +231,11 @@ fn failed_cycle(name: &str, e: Error, locked: bool, kinds: &[QuantityKind], req:
         Some(DynamicsError::BadMass { .. }) => return usage(bad_mass(name, &e)),
         _ => {}
     }
+    // A sweep stopped on the turn says what goes on in the library's names (`trace_curve`,
+    // `AtSingular::Continue`): the notes name the command line's, as under `sweep`'s error.
+    let notes = Notes::of(&e);
     eprintln!("error: {}", named(name, &in_units(e, kinds, req.deg)));
+    notes.write();
     if locked {
         eprintln!("{LOCKED}");
     }

@@ -297,6 +297,34 @@ fn a_crank_that_cannot_turn_says_so() {
     assert!(!String::from_utf8_lossy(&out.stderr).contains(note));
 }
 
+/// Where the turn stops at a limit position or a change point, the error says what goes on in
+/// the library's names (`trace_curve`, `AtSingular::Continue`), and the notes say what those
+/// are on the command line, as under `sweep`'s: `dynamics` wrote the library's names alone,
+/// `--through-crossings` (which it takes) nowhere. The engine with a crank longer than its rod
+/// and offset (r = 0.3 > l + e = 0.26) locks at asin(0.26 / 0.3); a parallelogram machine meets
+/// its change point at half a turn.
+#[test]
+fn a_turn_stopped_at_a_singular_position_notes_the_command_line_s_names() {
+    let engine = shipped("engine.kl");
+    let out = kinloop(&["dynamics", &engine, "--speed", "150", "--params", "r=0.3,l=0.25"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("`trace_curve` follows the curve through it"), "{err}");
+    assert!(err.contains("\nnote: `trace_curve` is `kinloop trace` on the command line\n"), "{err}");
+    assert!(err.contains("note: a crank turning this machine meets a singular position"), "{err}");
+    let path = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("parallelogram_dyn.kl");
+    let text = "pub struct Par { params a = 1, b = 3, c = 1, d = 3, m = 1; input phi; unknowns beta = 0.1, \
+                gamma = 1.2; loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma; point p = a @ phi; \
+                point q = (d, 0) + c @ gamma; body crank: mass m, com p, inertia m, turns phi; \
+                body rocker: mass m, com q, inertia m, turns gamma; }";
+    std::fs::write(&path, text).expect("write the declaration");
+    let out = kinloop(&["dynamics", path.to_str().unwrap(), "--speed", "10", "--start", "0.1"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("the sweep stopped at a singular crossing"), "{err}");
+    assert!(err.contains("`AtSingular::Continue` is `--through-crossings`, `trace_curve` is `kinloop trace`"), "{err}");
+}
+
 /// A slider-crank machine (the crank's moment of inertia `j_c`, the piston's mass `m_p`, no
 /// loads) written to `name` in the tests' directory.
 fn slider_crank_machine(name: &str) -> std::path::PathBuf {
