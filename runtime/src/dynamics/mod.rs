@@ -68,6 +68,10 @@ pub use eval::{Dynamics, Shaking};
 pub use model::{Body, Coord, ForceLaw, Load, MassModel, Point, Rotation, TorqueLaw};
 pub use ode::{DenseStep, MIN_RTOL, OdeConfig, dopri5};
 pub use simulate::Simulation;
-pub use simulate_of::{Recording, RunConfig, Trajectory, simulate_of, simulate_steps_of};
+// The recorded runs' storage, shared with the run-time models' `run` (kinloop-model): no API
+// of its own, since `run` records every step and `run_steps` keeps none.
+#[doc(hidden)]
+pub use simulate_of::Recording;
+pub use simulate_of::{RunConfig, Trajectory, simulate_of, simulate_steps_of};
 pub use sized::{Applied, DynamicsBuf, MassModelBuf};
 pub use state::AnalogState;

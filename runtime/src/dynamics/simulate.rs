@@ -133,10 +133,11 @@ where
     /// ([`OdeConfig::max_steps`](super::OdeConfig::max_steps) of the configuration's `ode`) as
     /// [`DynamicsError::TooManySteps`]; an angle parameter too large to resolve (beyond the
     /// `largest_precise_angle` of the configuration's `newton`) as [`DynamicsError::Kinematics`]
-    /// before any step; integrator failures. Besides the recorded trajectory (one
-    /// entry per accepted step, 96 bytes, amortised growth up to the step budget: 0.96 GB at the
-    /// default budget, see [`Recording`]), a step allocates nothing; a long run that needs
-    /// only what passes keeps nothing with [`Simulation::run_steps`].
+    /// before any step; integrator failures. Besides the recorded trajectory (one entry per
+    /// accepted step, 96 bytes, amortised growth up to the step budget: 0.96 GB at the default
+    /// budget, see [`OdeConfig::max_steps`](super::OdeConfig::max_steps)), a step allocates
+    /// nothing; a long run that needs only what passes keeps nothing with
+    /// [`Simulation::run_steps`].
     pub fn run(self, t_end: f64) -> Result<Trajectory, DynamicsError>
     where
         D: Fn(f64, f64, f64) -> f64,

@@ -71,6 +71,11 @@ pub struct Trajectory {
 /// for 16.8 million (1.6 GB at 96 bytes a step) once a run passes 8.4 million, where 0.96 GB
 /// holds every step a run can make (a span far beyond the budget makes them all before its
 /// [`DynamicsError::TooManySteps`]). The steps recorded, and so the trajectory, are the same.
+///
+/// Public for the run-time models' `run` (kinloop-model) alone, and hidden: a caller that wants
+/// the trajectory calls `run`, one that wants each step as it is made `run_steps`, which keeps
+/// none.
+#[doc(hidden)]
 #[derive(Debug)]
 pub struct Recording {
     steps: Vec<DenseStep<2>>,
@@ -134,7 +139,7 @@ impl Trajectory {
 /// [`DynamicsError::SizeMismatch`]; an angle parameter beyond the `largest_precise_angle` of
 /// `cfg.newton` ([`Kernel::check_param_angles`]) is refused before the first step. Besides the
 /// recorded trajectory (one entry per accepted step, amortised growth up to the step budget,
-/// see [`Recording`]), a step allocates nothing unless `reduced` does.
+/// [`OdeConfig::max_steps`]), a step allocates nothing unless `reduced` does.
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_of<K: Kernel>(
     m: K,
