@@ -12,6 +12,7 @@ mod support;
 
 mod bad_input;
 mod cognates;
+mod convergence;
 mod defects;
 mod determinism;
 mod evolution;
