@@ -117,12 +117,16 @@
 //!   parameters (`inertia` defaults to 0), its centre of mass `com` a declared `point` or
 //!   `(x, y)` of unknowns, outputs and constants (`com (x_c, 0)` for a slider; a point that
 //!   moves with an input is declared, `point p = (s, 0);`, and named, `com p`), and `turns`
-//!   names the input or angle unknown it rotates with (none for a slider). An angle is an
-//!   input or unknown that enters a sine or cosine as a multiple of itself by a constant
-//!   (`l @ q`, `l @ (q + gamma)`, `sin(2 * q)`, `l @ (q / 2)`; a length scaled into one,
-//!   `sin(x / l)`, is not), or an
-//!   unknown that an `eq` sets to an angle (`eq e: th == atan2(y, x);`, or `asin`, `acos`,
-//!   `atan`, `angle(v)`, plus a constant). `force name at p = (fx, fy);` and
+//!   names the input or angle unknown it rotates with (none for a slider). An angle there is
+//!   what the unit checks above take for one: an input or unknown that enters a sine or cosine
+//!   as a multiple of itself by a constant (`l @ q`, `l @ (q + gamma)`, `sin(2 * q)`,
+//!   `l @ (q / 2)`; a length scaled into one, `sin(x / l)`, is not), an unknown that an `eq`
+//!   sets to an angle (`eq e: th == atan2(y, x);`, or `asin`, `acos`, `atan`, `angle(v)`, plus
+//!   a constant) or to an expression of angles (`eq gear: th == -2 * phi;`, a flywheel geared
+//!   to the crank, which turns by so many radians), or one whose value is written in degrees.
+//!   A name written as a length elsewhere (a coordinate of a position, the length of `@`) is
+//!   an angle only by a whole multiple of it in a sine or an inverse trigonometric function in
+//!   an `eq`. `force name at p = (fx, fy);` and
 //!   `torque name on angle = scalar;` are loads: expressions of parameters,
 //!   inputs and unknowns, evaluated by generated straight-line code; `gravity (0, -g);` sets
 //!   gravity. The macro then generates `m.mass_model()`, the runtime's

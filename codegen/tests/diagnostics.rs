@@ -669,6 +669,46 @@ fn unknowns_set_to_one_another_in_circles_are_judged_at_once() {
     assert!(e[0].starts_with("`y0 + x` adds an angle and a length"), "{e:#?}");
 }
 
+/// A body's `turns`, a torque's `on` and the angle of a polar term (swapped or not, asked with
+/// the term set aside) take the same verdicts on unknowns set to one another in circles, found
+/// at once: each could reach the exponential search.
+#[test]
+fn turns_and_the_terms_set_aside_judge_unknowns_in_circles_at_once() {
+    let n = 20;
+    let mechanism = |set: &dyn Fn(usize) -> String, tail: &str| {
+        let names: Vec<String> = (0..n).map(|i| format!("y{i}")).collect();
+        let eqs: String = (0..n).map(|i| format!("eq e{i}: y{i} == {};", set(i))).collect();
+        format!("pub struct S {{ {SLIDER} params m, j; unknowns {}; {eqs} {tail} }}", names.join(", "))
+    };
+    let circle = |i: usize| format!("y{} + y{} + phi", (i + 1) % n, (i + 2) % n);
+    let chain = |i: usize| if i + 1 == n { "2 * psi".to_string() } else { format!("y{} + phi", i + 1) };
+    let turns = "body b: mass m, com (x, 0), inertia j, turns y0; torque t on y1 = 1.0;";
+    // In a circle nothing else makes angles, neither is one; in a chain from `psi`, both are.
+    let e = errors(&mechanism(&circle, turns));
+    assert_eq!(e.len(), 2, "{e:#?}");
+    assert!(e[0].starts_with("`y0` is not an angle"), "{e:#?}");
+    assert!(e[1].starts_with("`y1` is not an angle"), "{e:#?}");
+    assert_eq!(errors(&mechanism(&chain, turns)), Vec::<String>::new());
+    // Written as a length elsewhere, it is asked again with that place set aside.
+    let placed = "point p = (x, y0); body b: mass m, com (x, 0), inertia j, turns y0;";
+    let e = errors(&mechanism(&circle, placed));
+    assert!(e.iter().any(|e| e.starts_with("`y0` is not an angle")), "{e:#?}");
+    // The angle of `psi @ y0`, apart from the term: a length swapped in the circle, an angle in
+    // the chain (swapping cannot help).
+    let e = errors(&mechanism(&circle, "point p = psi @ y0;"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].contains("write `y0 @ psi`"), "{e:#?}");
+    let e = errors(&mechanism(&chain, "point p = psi @ y0;"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].contains("`y0` is an angle too, so swapping the two cannot help"), "{e:#?}");
+    // Two terms that take two names in opposite orders, told apart with both set aside.
+    let opposite = "params a; point p = (2 * y0) @ a; point q = a @ y0;";
+    let e = errors(&mechanism(&chain, opposite));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`2 * y0` is an angle"), "{e:#?}");
+    let _ = errors(&mechanism(&circle, opposite));
+}
+
 /// `rot(phi, v)`, the vector and the angle the other way round, is one error that says to swap
 /// them; each argument was told it is of the wrong kind.
 #[test]
@@ -1872,5 +1912,72 @@ fn a_negated_zero_closes_a_loop_as_zero_does() {
         let src = declaration(&negated);
         assert_eq!(errors(&src), Vec::<String>::new(), "{negated}");
         assert_eq!(kinloop_codegen::expand(tokens(&src)).to_string(), zero, "{negated}");
+    }
+}
+
+/// A body turns with, and a torque acts on, an unknown an `eq` sets to an expression of an angle
+/// (`y == 2 * psi`, a gear's angle), the angle the unit check and the plan's column (`y [rad]`)
+/// take it for: both were refused as "not an angle". Set to a length times an angle (an arc),
+/// through a circle of equations, or written as a length elsewhere, it is still refused: as a
+/// length elsewhere it is told so, and so is a slider's coordinate that a sine takes only as a
+/// fraction (`l @ (x / 2)`, the 2 perhaps a radius), which the unit check takes for no angle.
+#[test]
+fn a_body_turns_with_an_unknown_an_eq_sets_to_an_angle() {
+    let head = "params m, j, g0; unknowns y;";
+    for tail in [
+        "eq e: y == 2 * psi; body b: mass m, com (x, 0), inertia j, turns y; torque t on y = 1.0;",
+        "eq e: y == psi + g0; body b: mass m, com (x, 0), inertia j, turns y;",
+        "eq e: 0 == y - phi / 2; torque t on y = 1.0;",
+    ] {
+        assert_eq!(errors(&format!("pub struct S {{ {SLIDER} {head} {tail} }}")), Vec::<String>::new(), "{tail}");
+    }
+    // Each refused as "not an angle", with the other errors it has, and whether it is told that
+    // it is written as a length elsewhere.
+    for (tail, name, count, placed) in [
+        ("eq e: y == r * psi; body b: mass m, com (x, 0), inertia j, turns y;", "y", 1, false),
+        ("unknowns z; eq e: y == 2 * z; eq f: z == y / 2 + x; torque t on y = 1.0;", "y", 1, false),
+        // Written as a length, it is one: the `eq` is told as well.
+        ("eq e: y == 2 * psi; point p = (x, y); body b: mass m, com (x, 0), inertia j, turns y;", "y", 2, true),
+        ("point q = l @ (x / 2); body b: mass m, com (x, 0), inertia j, turns x;", "x", 1, true),
+        ("body b: mass m, com (x, 0), inertia j, turns x;", "x", 1, false),
+    ] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} {head} {tail} }}"));
+        assert_eq!(e.len(), count, "{tail}: {e:#?}");
+        assert!(e[0].starts_with(&format!("`{name}` is not an angle")), "{tail}: {e:#?}");
+        assert!(e[0].contains(&format!("or `{name} == 2 * psi` with `psi` an angle)")), "{tail}: {e:#?}");
+        let told =
+            "; it is written as a length elsewhere (a coordinate of a position or the length of `@`), where only";
+        assert_eq!(e[0].contains(told), placed, "{tail}: {e:#?}");
+    }
+}
+
+/// The angle of a polar term that an `eq` sets to an angle (`y` in `psi @ y`, `y == 2 * phi`)
+/// is an angle apart from the term, as the unit check finds it: swapping cannot help, and `y`
+/// stays the angle it is (`y + x` is told). It was taken for a length written in the wrong
+/// place: "write `y @ psi`", a link `2 * phi` long, and `y + x` passed.
+#[test]
+fn the_angle_of_a_term_that_an_eq_sets_to_an_angle_is_no_swapped_length() {
+    let e = errors(&format!("pub struct S {{ {SLIDER} unknowns y; eq e: y == 2 * phi; point p = psi @ y; }}"));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert!(e[0].starts_with("`psi` is an angle"), "{e:#?}");
+    assert!(e[0].contains("`y` is an angle too, so swapping the two cannot help"), "{e:#?}");
+    let e = errors(&format!(
+        "pub struct S {{ {SLIDER} unknowns y; eq e: y == 2 * phi; point p = psi @ y; output w = y + x; }}"
+    ));
+    assert_eq!(e.len(), 2, "{e:#?}");
+    assert!(e[1].starts_with("`y + x` adds an angle and a length"), "{e:#?}");
+}
+
+/// Two terms that take two names in opposite orders (`(2 * y) @ a` beside `a @ y`) are told
+/// apart by an `eq` that sets one to an angle (`y == phi / 2`), in either order: the term that
+/// takes `y` in its length is told. It was a tie, "nothing else in the mechanism tells which is
+/// the length".
+#[test]
+fn an_eq_that_sets_a_name_to_an_angle_tells_two_opposite_terms_apart() {
+    for points in ["point p = (2 * y) @ a; point q = a @ y;", "point p = a @ y; point q = (2 * y) @ a;"] {
+        let e = errors(&format!("pub struct S {{ {SLIDER} params a; unknowns y; eq e: y == phi / 2; {points} }}"));
+        assert_eq!(e.len(), 1, "{points}: {e:#?}");
+        assert!(e[0].starts_with("`2 * y` is an angle"), "{points}: {e:#?}");
+        assert!(!e[0].contains("nothing else"), "{points}: {e:#?}");
     }
 }

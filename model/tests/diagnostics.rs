@@ -498,6 +498,15 @@ fn an_unknown_an_eq_sets_to_an_angle_is_one_at_run_time() {
     assert!(Model::read("fine.kl", &fine).is_ok(), "{fine}");
 }
 
+/// The angle of a polar term that an `eq` sets to an angle (`y` in `phi @ y`) is an angle in a
+/// `.kl` file as by the macro: swapping the term cannot help, and it is not told to.
+#[test]
+fn the_angle_of_a_term_an_eq_sets_to_an_angle_is_no_swap_at_run_time() {
+    let (_, message) = one_error("    point p = phi @ y;\n");
+    assert!(message.starts_with("`phi` is an angle"), "{message}");
+    assert!(message.contains("`y` is an angle too, so swapping the two cannot help"), "{message}");
+}
+
 /// A slider-crank whose loop ends in `first` and whose point `p` ends in `second`, with `more`
 /// on a line of its own: the two terms start at line 5, column 35, and line 6, column 24.
 fn two_terms(first: &str, second: &str, more: &str) -> String {

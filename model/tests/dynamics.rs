@@ -193,6 +193,55 @@ fn a_slider_crank_s_torque_and_shaking_force_match_the_closed_form() {
     }
 }
 
+/// The centred slider-crank of [`CENTRED`] with a flywheel geared to the crank at twice its
+/// speed, the other way round: its angle `g`, set by an `eq` to `-2 * phi`, is an angle a body
+/// turns with and a torque acts on, at run time as in `mechanism!`.
+const GEARED: &str = "pub struct Geared {
+    params r = 0.05, l = 0.2, m_c = 1.2, j_c = 0.004, m_p = 0.5, f = 300.0, j_g = 0.003, k = 0.7;
+    input phi;
+    unknowns beta = 0, x = 0.25, g = 0;
+    loop abc: r @ phi + l @ beta == (x, 0);
+    eq gear: g == -2 * phi;
+    point pin = r @ phi;
+    body crank: mass m_c, com pin, inertia j_c, turns phi;
+    body piston: mass m_p, com (x, 0);
+    body flywheel: mass 0, com (0, 0), inertia j_g, turns g;
+    force gas at (x, 0) = (-f, 0);
+    torque push on g = -k;
+}";
+
+/// The geared flywheel adds `4 j_g` to the reduced inertia, nothing to its slope, and
+/// `4 j_g eps - 2 k` to the driving torque (its torque `-k` drives the crank by `2 k` through
+/// the ratio -2): the run-time reader takes `g` for the angle the macro does. Both were
+/// refused as "not an angle".
+#[test]
+fn a_flywheel_turning_with_an_angle_an_eq_sets_adds_its_inertia_by_the_ratio() {
+    let (j_g, k) = (0.003, 0.7);
+    let mut geared = Model::read("geared.kl", GEARED).unwrap();
+    let mut centred = Model::read("centred.kl", CENTRED).unwrap();
+    let speed = |phi: f64| (120.0 + 20.0 * phi.sin(), 20.0 * phi.cos());
+    let a = geared.inverse_cycle(SpeedLaw::Varying(&speed)).samples(180).run().unwrap();
+    let b = centred.inverse_cycle(SpeedLaw::Varying(&speed)).samples(180).run().unwrap();
+    assert_eq!(a.points.len(), b.points.len());
+    let mut want = vec![Vec::new(); 3];
+    let mut got = vec![Vec::new(); 3];
+    for (p, q) in a.points.iter().zip(&b.points) {
+        let values = [q.inertia + 4.0 * j_g, q.inertia_slope, q.torque + 4.0 * j_g * q.eps - 2.0 * k];
+        for (v, value) in want.iter_mut().zip(values) {
+            v.push(value);
+        }
+        for (v, value) in got.iter_mut().zip([p.inertia, p.inertia_slope, p.torque]) {
+            v.push(value);
+        }
+    }
+    // The same loop solved alike, the gear's analogs exact (-2 and 0): a few roundings of each
+    // quantity's largest magnitude.
+    for (name, (w, g)) in ["inertia", "inertia slope", "torque"].iter().zip(want.iter().zip(&got)) {
+        let d = rel_diff(w, g);
+        assert!(d < 1e-12, "{name}: {d:e}");
+    }
+}
+
 #[test]
 fn bad_values_and_missing_items_are_typed_errors() {
     let mut model = Model::read("engine.kl", fx::ENGINE_MACHINE_TEXT).unwrap();

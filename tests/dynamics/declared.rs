@@ -7,7 +7,8 @@
 //! * the rhombic drive of the fixtures: the declared mass model against the same model built by
 //!   hand, body by body;
 //! * the engine's rod turning with an angle that an `eq` sets through `atan2`, its dynamics
-//!   those of the engine whose rod turns with a loop angle;
+//!   those of the engine whose rod turns with a loop angle; a flywheel geared to its crank,
+//!   turning with an angle an `eq` sets to `-2 * phi`, adding its inertia and torque by the ratio;
 //! * bad parameter values at run time: typed errors.
 
 use crate::fixtures::{RhombicDrive, derivative};
@@ -134,6 +135,55 @@ fn a_body_turns_with_an_angle_an_equation_sets() {
     }
     // The same positions and analogs from two sets of equations, each solved to rounding: a
     // few ulps (4e-16 measured), far below the rod's share.
+    assert!(worst < 1e-12, "relative difference {worst:e}");
+}
+
+kinloop::mechanism! {
+    /// [`EngineByLoop`] with a flywheel geared to the crank at twice its speed, the other way
+    /// round: its angle `g` is set by an `eq` to an expression of the crank's angle, an angle
+    /// in no sine or cosine and set by no inverse trigonometric function, and the flywheel
+    /// turns with it, pushed by a constant torque.
+    pub struct EngineWithGear {
+        params r = 0.05, l = 0.2, l_s = 0.06, m_rod = 2.0, j_rod = 0.01, m_p = 0.5, c = 0.4, j_g = 0.003, k = 0.7;
+        input phi;
+        unknowns beta = 0, x = 0.25, g = 0;
+        loop abc: r @ phi + l @ beta == (x, 0);
+        eq gear: g == -2 * phi;
+        point s2 = r @ phi + l_s @ beta;
+        body rod: mass m_rod, com s2, inertia j_rod, turns beta;
+        body piston: mass m_p, com (x, 0);
+        body flywheel: mass 0, com (0, 0), inertia j_g, turns g;
+        torque friction on beta = -c * beta;
+        torque push on g = -k;
+    }
+}
+
+/// A flywheel that turns with an angle an `eq` sets to `-2 * phi` adds `4 j_g` to the reduced
+/// inertia and `2 k` to the generalised force of its torque `-k` (through the ratio -2), and
+/// nothing to the slope: its angle turns it by so many radians. Such an angle was refused as "not an angle".
+#[test]
+fn a_body_turns_with_an_angle_an_equation_sets_to_an_expression_of_angles() {
+    let (geared, plain) = (EngineWithGear::default(), EngineByLoop::default());
+    let (model_geared, model_plain) = (geared.mass_model().unwrap(), plain.mass_model().unwrap());
+    assert_eq!(model_geared.bodies()[2].rotation, Rotation::Unknown(2));
+    let (mut guess_geared, mut guess_plain) = (geared.guess_flat(&[0.0]), plain.guess_flat(&[0.0]));
+    let (gear_inertia, push) = (4.0 * geared.j_g, 2.0 * geared.k);
+    let mut worst: f64 = 0.0;
+    for step in 0..36 {
+        let phi = step as f64 * 10f64.to_radians();
+        let k_geared = geared.kinematics_flat(&[phi], &guess_geared, &NewtonConfig::default()).unwrap();
+        let k_plain = plain.kinematics_flat(&[phi], &guess_plain, &NewtonConfig::default()).unwrap();
+        (guess_geared, guess_plain) = (k_geared.q, k_plain.q);
+        let a = model_geared.dynamics(&k_geared, &[30.0]).unwrap();
+        let b = model_plain.dynamics(&k_plain, &[30.0]).unwrap();
+        let j = a.reduced_inertia();
+        worst = worst
+            .max((a.reduced_inertia() - b.reduced_inertia() - gear_inertia).abs() / j)
+            .max((a.reduced_inertia_slope() - b.reduced_inertia_slope()).abs() / j)
+            .max((a.forces[0] - b.forces[0] - push).abs() / push);
+    }
+    // The same loop solved alike in both, the gear's analogs exact (-2 and 0): a few roundings
+    // of J and Q, far below the flywheel's share (4 j_g = 0.012 of J = 0.015 to 0.019).
     assert!(worst < 1e-12, "relative difference {worst:e}");
 }
 

@@ -3,9 +3,9 @@
 //! it (`cos(q + gamma)`), or anything else.
 //!
 //! The planner asks which unknowns' equations repeat every turn (`plan::turns`); the semantics
-//! asks which unknowns and inputs are angles, for a body's `turns` and a torque's `on`: a leaf
-//! that enters a sine or cosine as a whole multiple of itself (`l @ q`), not one scaled into it
-//! (a rack's travel `sin(x / rp)`). One classification serves both.
+//! asks which unknowns and inputs are angles (the unit check, a body's `turns`, a torque's
+//! `on`): a leaf that enters a sine or cosine as a whole multiple of itself (`l @ q`), not one
+//! scaled into it (a rack's travel `sin(x / rp)`). One classification serves both.
 
 use super::dag::{Func, Graph, Leaf, NodeId, Op};
 use std::collections::{HashMap, HashSet};

@@ -7,13 +7,13 @@
 //! Anything else would need its own analogs, so the message asks to declare it as a `point`.
 
 use super::lower::{Lowerer, Place};
-use super::scope::key;
+use super::polar::Angles;
+use super::scope::{key, leaf_name};
 use super::symbols::{Symbol, Val};
 use crate::front::expr::{Expr, SpanRange};
 use crate::front::suggest::similar;
 use crate::front::syntax::BodyDef;
-use crate::graph::dag::{Func, Graph, Leaf, NodeId, Op};
-use crate::graph::multiples;
+use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use proc_macro2::Span;
 use std::collections::HashMap;
 use syn::Ident;
@@ -244,54 +244,37 @@ impl Pending {
         }
     }
 
-    /// Resolves the points against the output columns and checks the angles against the
-    /// equations' residuals and the output columns. A coordinate of a point is an angle where
-    /// `angle_of` says so (as the check of positions' coordinates judges one: in degrees too,
-    /// and not the angle of a term found swapped), `Some(true)` if its value is in degrees.
-    /// An angle of `turns` or `on` is one by the kinematics, or by its value written in
-    /// `degrees`, as a coordinate's is.
-    pub(super) fn resolve(
-        self,
-        lw: &mut Lowerer,
-        (outputs, residuals): (&[NodeId], &[NodeId]),
-        degrees: &[Leaf],
-        angle_of: &mut dyn FnMut(&Lowerer, Leaf) -> Option<bool>,
-    ) -> DynamicsModel {
+    /// Resolves the points against the output columns (`outputs`) and checks the angles that
+    /// `turns` and `on` name. Both ask `angles`, the unit check's verdicts: an angle of `turns`
+    /// or `on` is one by [`Angles::is_angle`], and a coordinate of a point is refused as an
+    /// angle where [`Angles::why`] finds one (in degrees too, and not the angle of a term found
+    /// swapped).
+    pub(super) fn resolve(self, lw: &mut Lowerer, outputs: &[NodeId], angles: &mut Angles) -> DynamicsModel {
         let columns: HashMap<NodeId, usize> = outputs.iter().enumerate().rev().map(|(c, &n)| (n, c)).collect();
-        // The kinematics' trigonometric arguments, for the angles `turns` and `on` name: found
-        // once (a walk of the whole graph, not taken for a mechanism that names none), and one
-        // verdict per angle however many bodies and torques name it.
-        let arguments = if self.angles.is_empty() {
-            Vec::new()
-        } else {
-            let kinematics: Vec<NodeId> = residuals.iter().chain(outputs).copied().collect();
-            multiples::trig_arguments(&lw.graph, &kinematics)
-        };
-        let mut verdicts: HashMap<Leaf, bool> = HashMap::new();
         for (id, a) in &self.angles {
             let leaf = match a {
                 AngleModel::Unknown(u) => Leaf::Unknown(*u as u16),
                 AngleModel::Input(i) => Leaf::Input(*i as u16),
                 AngleModel::None => continue,
             };
-            // A guess in degrees declares an angle (`unknowns w = deg(30);`): the check of a centre
-            // of mass refuses `w` there as one, so a body may turn with it.
-            let verdict = *verdicts
-                .entry(leaf)
-                .or_insert_with(|| degrees.contains(&leaf) || is_angle(&lw.graph, leaf, &arguments, residuals));
-            if !verdict {
-                lw.errors.push(syn::Error::new(
-                    id.span(),
-                    format!(
-                        "`{id}` is not an angle: it is the angle of no `@`, sin, cos or tan of the mechanism \
-                         (as in `l @ {id}`, `sin(2 * {id} + gamma)`; not scaled, as in `sin({id} / l)`), and no \
-                         `eq` sets it to an angle (as `{id} == atan2(dy, dx)` does); a body that only slides \
-                         has no `turns`, a torque acts on an angle{}",
-                        swapped_hint(lw, leaf)
-                    ),
-                ));
+            // The one test of an angle, that of the unit check: a body that turns with an
+            // unknown an `eq` sets to `2 * psi` (a gear's angle) turns by so many radians, as
+            // with `psi`; a guess in degrees declares an angle (`unknowns w = deg(30);`), which
+            // the check of a centre of mass refuses there as one. The angle of a term found
+            // swapped is one here (`l` in `psi @ l`: the term is the one mistake told); that of
+            // a term whose length is in degrees (`s` in `th @ s`) is none, as for the unit check,
+            // which tells that term and says `s` is as likely its length.
+            if !angles.is_angle(&lw.graph, leaf) {
+                let error = not_an_angle(lw, id, leaf, angles.angle_but_for_its_place(&lw.graph, leaf));
+                lw.errors.push(error);
             }
         }
+        // Why a coordinate that is an unknown is an angle, `Some(true)` if its value is in
+        // degrees.
+        let mut angle_of = |lw: &Lowerer, leaf: Leaf| {
+            let name = leaf_name(lw, leaf).unwrap_or_default();
+            angles.why(&lw.graph, leaf, &name).map(|_| angles.in_degrees(leaf))
+        };
         let mut coords = |lw: &mut Lowerer, p: &PendingPoint, what: &str| -> Option<[CoordModel; 2]> {
             let nodes = [p.x, p.y];
             // Refused by [`super::polar`] where it is written: in a `let` or point this position
@@ -431,6 +414,29 @@ fn angle(lw: &mut Lowerer, id: &Ident, clause: &str) -> Option<AngleModel> {
     None
 }
 
+/// Why a name written as a length elsewhere is no angle where it would be one elsewhere.
+const BY_PLACE: &str = "; it is written as a length elsewhere (a coordinate of a position or the length of `@`), \
+                        where only a whole multiple of it in a sine or an inverse trigonometric function in an `eq` \
+                        would make it an angle";
+
+/// The error for `id`, the input or unknown `leaf` that `turns` or `on` names, which is no angle;
+/// `by_place` if it is none only because it is written as a length elsewhere.
+fn not_an_angle(lw: &Lowerer, id: &Ident, leaf: Leaf, by_place: bool) -> syn::Error {
+    // The example of an angle the `eq` sets it to is named apart from it.
+    let other = if key(id) == "psi" { "beta" } else { "psi" };
+    let place = if by_place { BY_PLACE } else { "" };
+    syn::Error::new(
+        id.span(),
+        format!(
+            "`{id}` is not an angle: it is the angle of no `@`, sin, cos or tan of the mechanism (as in `l @ {id}`, \
+             `sin(2 * {id} + gamma)`; not scaled, as in `sin({id} / l)`), and no `eq` sets it to an angle (as \
+             `{id} == atan2(dy, dx)` does, or `{id} == 2 * {other}` with `{other}` an angle){place}; a body that only \
+             slides has no `turns`, a torque acts on an angle{}",
+            swapped_hint(lw, leaf)
+        ),
+    )
+}
+
 /// For an input or unknown named as an angle (`turns`, `on`) that is the length of a polar term,
 /// `psi @ l`, what most likely happened: the term's length and angle are swapped.
 fn swapped_hint(lw: &Lowerer, leaf: Leaf) -> String {
@@ -450,17 +456,6 @@ fn input_name(lw: &Lowerer, n: NodeId) -> Option<String> {
     leaf_name(lw, leaf)
 }
 
-/// The name of the parameter, input or unknown `leaf`.
-pub(super) fn leaf_name(lw: &Lowerer, leaf: Leaf) -> Option<String> {
-    let named = |s: &Symbol| match (leaf, s) {
-        (Leaf::Param(i), Symbol::Param(j))
-        | (Leaf::Input(i), Symbol::Input(j))
-        | (Leaf::Unknown(i), Symbol::Unknown(j)) => *j == i,
-        _ => false,
-    };
-    lw.scope.symbols.iter().find(|(_, (s, _))| named(s)).map(|(k, _)| k.clone())
-}
-
 fn depends_on_state(g: &Graph, roots: &[NodeId]) -> bool {
     g.leaves_of(roots).iter().any(|l| matches!(l, Leaf::Input(_) | Leaf::Unknown(_)))
 }
@@ -471,62 +466,4 @@ fn coord(g: &Graph, columns: &HashMap<NodeId, usize>, n: NodeId) -> Option<Coord
         _ if !depends_on_state(g, &[n]) => Some(CoordModel::Fixed(n)),
         _ => columns.get(&n).map(|&c| CoordModel::Output(c)),
     }
-}
-
-/// Whether `leaf` is an angle of the kinematics: it enters a sine, cosine or tangent as a whole
-/// multiple of itself (`l @ q`, `l @ (q + gamma)`, `sin(2 * q)`), or an equation sets it to an
-/// angle (`eq e: th == atan2(y, x);`). Only so: a length may also appear in an argument, scaled
-/// (a rack's travel `sin(x / rp)`), and a body turning with it would turn by its metres.
-/// `arguments` are those of the kinematics' sines, cosines and tangents.
-pub(super) fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &[NodeId]) -> bool {
-    multiples::in_whole_angle(g, leaf, arguments) || residuals.iter().any(|&r| sets_to_angle(g, leaf, r))
-}
-
-/// Whether residual `r` sets `leaf` to an angle: `leaf == f + c`, either side and either sign,
-/// with `f` one or more inverse trigonometric functions (`atan2`, `asin`, `acos`, `atan`,
-/// `angle(v)`, which is an `atan2`) and `c` terms free of the state (an offset such as `pi / 2`).
-/// The leaf must be a whole side: `x == l * atan(s)` makes `x` a length.
-pub(super) fn sets_to_angle(g: &Graph, leaf: Leaf, r: NodeId) -> bool {
-    sets_to_angle_by(g, leaf, r, &mut |_| false)
-}
-
-/// As [`sets_to_angle`], the terms that `made_angle` finds to be angles by what they are made
-/// of (`2 * psi`, `psi + gamma`, with `psi` an angle) counted as the inverse trigonometric
-/// functions are: `y == 2 * psi` sets `y` to an angle. A term that holds `leaf` itself sets it
-/// to nothing.
-pub(super) fn sets_to_angle_by(g: &Graph, leaf: Leaf, r: NodeId, made_angle: &mut dyn FnMut(NodeId) -> bool) -> bool {
-    let Some(terms) = terms(g, r) else { return false };
-    let (mut own, mut angles) = (0, 0);
-    for t in terms {
-        match g.op(t) {
-            Op::Leaf(l) if l == leaf => own += 1,
-            Op::Func(Func::Asin | Func::Acos | Func::Atan, _) | Op::Atan2(..) => angles += 1,
-            _ if g.leaves_of(&[t]).contains(&leaf) => return false,
-            _ if made_angle(t) => angles += 1,
-            _ if !depends_on_state(g, &[t]) => {}
-            _ => return false,
-        }
-    }
-    own == 1 && angles > 0
-}
-
-/// More terms than an equation setting an angle has (see [`terms`]).
-const MAX_TERMS: usize = 16;
-
-/// The terms of `r` read as a sum through `+`, `-` and negation, their signs dropped; `None`
-/// beyond [`MAX_TERMS`] (an equation that sets an angle has a few, and a sum that shares its
-/// terms would otherwise be walked once per path).
-fn terms(g: &Graph, r: NodeId) -> Option<Vec<NodeId>> {
-    let (mut stack, mut out) = (vec![r], Vec::new());
-    while let Some(n) = stack.pop() {
-        match g.op(n) {
-            Op::Add(a, b) | Op::Sub(a, b) => stack.extend([a, b]),
-            Op::Neg(a) => stack.push(a),
-            _ => out.push(n),
-        }
-        if stack.len() + out.len() > MAX_TERMS {
-            return None;
-        }
-    }
-    Some(out)
 }

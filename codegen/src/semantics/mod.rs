@@ -2,6 +2,7 @@
 //! vector/scalar types checked and every expression lowered into one graph ([`lower`], with the
 //! built-in functions of [`builtins`]), assembled by [`model`].
 
+mod angles;
 pub mod builtins;
 mod calls;
 pub mod drawing;

@@ -228,19 +228,14 @@ pub(crate) fn build(def: MechanismDef) -> Result<Model, syn::Error> {
     let columns: Vec<NodeId> =
         out.points.iter().flat_map(|p| [p.x, p.y]).chain(out.scalars.iter().map(|s| s.value)).collect();
     let degrees = in_degrees(&globals);
-    let mut angles = super::polar::Angles::new(&residuals, &columns, degrees.clone());
+    let mut angles = super::polar::Angles::new(&residuals, &columns, degrees);
     // The polar terms first, so that the angle of one found swapped is taken for the length it
     // is everywhere else; then the coordinates, so that the dynamics does not report one refused
     // there again. Their errors after the dynamics', in the order of the checks.
     super::polar::note_places(&lw, &mut angles);
     let terms = super::polar::terms(&lw, &mut angles);
     let refused = super::polar::coordinates(&mut lw, &mut angles);
-    let mut angle_of = |lw: &Lowerer, leaf: Leaf| {
-        let name = super::dynamics::leaf_name(lw, leaf).unwrap_or_default();
-        angles.why(&lw.graph, leaf, &name).map(|_| angles.in_degrees(leaf))
-    };
-    let kinematics = (columns.as_slice(), residuals.as_slice());
-    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, kinematics, &degrees, &mut angle_of);
+    let dynamics = std::mem::take(&mut out.dynamics).resolve(&mut lw, &columns, &mut angles);
     terms.into_iter().chain(refused).for_each(|e| lw.errors.push(e));
     super::polar::sums(&mut lw, &mut angles);
     // The drawing lowers the terms again: only a declaration without errors lowers cleanly.

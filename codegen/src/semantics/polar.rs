@@ -20,8 +20,9 @@
 //!
 //! Two terms that take two names in opposite roles, bare or expressions alike (`l @ psi`
 //! beside `psi @ l`, `(2 * psi) @ l` or `0.5 * l @ psi` beside either), are judged together
-//! by one evidence, the two set aside: a name in a sine or cosine elsewhere, or set by an `eq`
-//! to an angle, is an angle; one in a coordinate of a position, or in a sum beside a length, a
+//! by one evidence, the two set aside: a name that the test of an angle finds one without
+//! them (in a sine or cosine elsewhere, set by an `eq` to an angle, `atan2(dy, dx)` or
+//! `2 * phi`) is an angle; one in a coordinate of a position, or in a sum beside a length, a
 //! length. Where it tells which name is the length, the term that takes it as its angle is told,
 //! and only it, in whichever order they are written; where nothing tells (or what tells
 //! contradicts itself), the first written is one error that says so, naming both readings.
@@ -46,19 +47,20 @@
 //! it is built, once (`2 * (x, psi)` is that vector's mistake); a position's vector is told at
 //! its coordinate.
 //!
-//! Only a name that is an angle by the mechanism itself is refused (the test of a body's
-//! `turns`: it enters a sine, cosine or `@` as a whole multiple of itself elsewhere, or an `eq`
-//! sets it to an angle), or one whose value is written in degrees (a scalar `let` of such a
-//! value too). Beyond that test, an unknown that an `eq` sets to an expression of such angles
-//! (`y == 2 * psi`, `y == psi + gamma`) is an angle too, the kind the plan labels its column
-//! with (`y [rad]`), unless it is written as a length elsewhere, where the `eq` is the mistake
-//! told. A name written as a length elsewhere (a coordinate of a position, the length of
-//! `@`) that a sine takes only as a fraction of itself (`sin(x / 2)`, the 2 perhaps a radius
-//! written as a number) is of no certain kind. A length times an angle (`(r * phi) @ 0`), a
-//! constant, or a name of no known kind stays the length it is written as.
+//! Only a name that is an angle by the one test of [`super::angles`] is refused, the test a
+//! body's `turns` takes too: it enters a sine, cosine or `@` as a whole multiple of itself
+//! elsewhere, an `eq` sets it to an angle (`atan2(dy, dx)`, or for an unknown an expression of
+//! angles, `y == 2 * psi`, the kind the plan labels its column with, `y [rad]`), or its value
+//! is written in degrees (a scalar `let` of such a value too). A name written as a length
+//! elsewhere (a coordinate of a position, the length of `@`) that a sine takes only as a
+//! fraction of itself (`sin(x / 2)`, the 2 perhaps a radius written as a number) is of no
+//! certain kind, and one that an `eq` sets to an expression of angles a length, the `eq` the
+//! mistake told. A length times an angle (`(r * phi) @ 0`), a constant, or a name of no known
+//! kind stays the length it is written as.
 
-use super::dynamics::{leaf_name, sets_to_angle, sets_to_angle_by};
+use super::angles::{Evidence, Verdicts};
 use super::lower::{Coordinate, Lowerer, NamedCoordinate, NamedLength, Place, ScalarPair, VectorPair};
+use super::scope::leaf_name;
 use crate::graph::dag::{Graph, Leaf, NodeId, Op};
 use crate::graph::dims::{self, Dim};
 use crate::graph::multiples;
@@ -79,7 +81,8 @@ pub(super) struct Angles {
     set_aside: Vec<NodeId>,
     /// The parameters and unknowns whose values are written in degrees.
     degrees: Vec<Leaf>,
-    known: HashMap<Leaf, bool>,
+    /// The verdicts of [`Angles::is_angle`], found over the whole mechanism.
+    verdicts: Verdicts,
     /// The names written bare as a coordinate of a position or as the length of `@` that are
     /// not angles: lengths, beside which an angle is a unit mix.
     lengths: HashSet<Leaf>,
@@ -94,9 +97,6 @@ pub(super) struct Angles {
     /// The angles of polar terms told to mix an angle and a length (`phi + e` in
     /// `psi @ (phi + e)`): a sum within one is that mistake, told once.
     told_mixed: Vec<NodeId>,
-    /// The unknowns that `eq`s set to expressions of angles (`y == 2 * psi`), found together
-    /// at the first verdict that asks ([`Angles::set_by_eqs`]).
-    set_by_eqs: Option<HashSet<Leaf>>,
 }
 
 impl Angles {
@@ -110,12 +110,11 @@ impl Angles {
             arguments: None,
             set_aside: Vec::new(),
             degrees,
-            known: HashMap::new(),
+            verdicts: Verdicts::default(),
             lengths: HashSet::new(),
             placed_as_lengths: HashSet::new(),
             swapped: HashSet::new(),
             told_mixed: Vec::new(),
-            set_by_eqs: None,
         }
     }
 
@@ -126,88 +125,45 @@ impl Angles {
             return None;
         }
         let degrees = self.degrees.contains(&leaf);
-        let known = self.known_angle(g, leaf);
+        let known = self.is_angle(g, leaf);
         why_an_angle(degrees, known, name)
     }
 
-    /// Whether the mechanism makes `leaf` an angle ([`is_angle`]), or an `eq` sets the unknown
-    /// `leaf`, not placed as a length, to an expression of angles (`eq e: y == 2 * psi;`, `psi`
-    /// an angle): `y` is then as much an angle as `psi`, the kind the plan gives its column
-    /// (`y [rad]`). A name placed as a length (`(x, s)` in a loop) stays one: an `eq` that sets
-    /// it to an angle is the mistake, told there as one that equates the two.
-    fn known_angle(&mut self, g: &Graph, leaf: Leaf) -> bool {
-        if self.angle_by_itself(g, leaf) {
-            return true;
-        }
-        if !matches!(leaf, Leaf::Unknown(_)) || self.placed_as_lengths.contains(&leaf) {
+    /// Whether `leaf` is an angle by the whole mechanism ([`Evidence::is_angle`], over the
+    /// trigonometric arguments of all but the terms `set_aside`), each verdict found once. The
+    /// angle of a term found swapped is one here still, as it is there: a body's `turns` takes
+    /// it as written, and only [`Angles::why`] makes it the length it is elsewhere.
+    pub(super) fn is_angle(&mut self, g: &Graph, leaf: Leaf) -> bool {
+        let (roots, set_aside) = (&self.roots, &self.set_aside);
+        let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, roots, set_aside));
+        let evidence = Evidence {
+            g,
+            residuals: &self.residuals,
+            arguments,
+            degrees: &self.degrees,
+            placed: &self.placed_as_lengths,
+            swapped: &self.swapped,
+        };
+        evidence.is_angle(leaf, &mut self.verdicts)
+    }
+
+    /// Whether `leaf`, written bare as a coordinate of a position or as the length of `@`, is
+    /// no angle by that place alone: a sine takes only a fraction of it (`sin(x / 2)`), or an
+    /// `eq` sets it to an expression of angles. For the message that refuses it as an angle.
+    pub(super) fn angle_but_for_its_place(&mut self, g: &Graph, leaf: Leaf) -> bool {
+        if !self.placed_as_lengths.contains(&leaf) || self.is_angle(g, leaf) {
             return false;
         }
-        if self.set_by_eqs.is_none() {
-            let set = self.set_by_eqs(g);
-            self.set_by_eqs = Some(set);
-        }
-        self.set_by_eqs.as_ref().is_some_and(|set| set.contains(&leaf))
-    }
-
-    /// The verdict of [`is_angle`] on `leaf`, once per name.
-    fn angle_by_itself(&mut self, g: &Graph, leaf: Leaf) -> bool {
-        if let Some(&known) = self.known.get(&leaf) {
-            return known;
-        }
-        let (roots, residuals, placed) = (&self.roots, &self.residuals, &self.placed_as_lengths);
-        let set_aside = &self.set_aside;
-        let arguments = self.arguments.get_or_insert_with(|| multiples::trig_arguments_avoiding(g, roots, set_aside));
-        let known = is_angle(g, leaf, arguments, residuals, placed.contains(&leaf));
-        self.known.insert(leaf, known);
-        known
-    }
-
-    /// The unknowns, not placed as lengths, that `eq`s set to expressions of angles, those
-    /// judged in turn: the least set closed under "an `eq` sets it to angles of the mechanism or
-    /// of the set". A circle of equations that nothing else makes angles (`y == 2 * z` beside
-    /// `z == y / 2`) makes none. Found from the angles outwards, each equation judged again only
-    /// where one of its names became an angle: a search from each unknown through the equations
-    /// that set it, its circles' verdicts not kept, took exponential time (eight unknowns each
-    /// set to the sum of two others held `mechanism!` and the reader for minutes).
-    fn set_by_eqs(&mut self, g: &Graph) -> HashSet<Leaf> {
-        let residuals = self.residuals.clone();
-        // The equations each name is in, to judge again where it becomes an angle.
-        let mut users: HashMap<Leaf, Vec<usize>> = HashMap::new();
-        for (i, &r) in residuals.iter().enumerate() {
-            for leaf in g.leaves_of(&[r]) {
-                users.entry(leaf).or_default().push(i);
-            }
-        }
-        let mut set = HashSet::new();
-        let mut queue: Vec<usize> = (0..residuals.len()).rev().collect();
-        while let Some(i) = queue.pop() {
-            let r = residuals[i];
-            for leaf in g.leaves_of(&[r]) {
-                let candidate = matches!(leaf, Leaf::Unknown(_))
-                    && !set.contains(&leaf)
-                    && !self.placed_as_lengths.contains(&leaf)
-                    && !self.angle_by_itself(g, leaf);
-                if candidate && sets_to_angle_by(g, leaf, r, &mut |t| self.made_angle(g, t, &set)) {
-                    set.insert(leaf);
-                    queue.extend(users.get(&leaf).into_iter().flatten().copied());
-                }
-            }
-        }
-        set
-    }
-
-    /// Whether the expression `t` is an angle by the names it is made from: some are angles,
-    /// in degrees, by the mechanism or in `set` (set to angles by `eq`s), but those of terms
-    /// found swapped, and the operations keep it one (`2 * psi`, `psi + gamma`; not `r * psi`).
-    fn made_angle(&mut self, g: &Graph, t: NodeId, set: &HashSet<Leaf>) -> bool {
-        let mut found = HashSet::new();
-        for leaf in g.leaves_of(&[t]) {
-            let angle = self.degrees.contains(&leaf) || set.contains(&leaf) || self.angle_by_itself(g, leaf);
-            if angle && !self.swapped.contains(&leaf) {
-                found.insert(leaf);
-            }
-        }
-        !found.is_empty() && dims::is_angle(g, t, &|l| if found.contains(&l) { Dim::Angle } else { Dim::Other })
+        let placed: HashSet<Leaf> = self.placed_as_lengths.iter().copied().filter(|&l| l != leaf).collect();
+        let evidence = Evidence {
+            g,
+            residuals: &self.residuals,
+            arguments: self.arguments.as_deref().unwrap_or_default(),
+            degrees: &self.degrees,
+            placed: &placed,
+            swapped: &self.swapped,
+        };
+        evidence.is_angle(leaf, &mut Verdicts::default())
     }
 
     /// Whether `leaf` is an angle because its value is written in degrees.
@@ -215,25 +171,21 @@ impl Angles {
         self.degrees.contains(&leaf) && !self.swapped.contains(&leaf)
     }
 
-    /// Whether `leaf` is an angle by what the rest of the mechanism says of it: written in
-    /// degrees, an angle of a sine or cosine among `arguments` (found with the terms in
-    /// question set aside), or set to one by an `eq`.
+    /// Whether `leaf` is an angle by what the rest of the mechanism says of it, the terms in
+    /// question set aside: [`Evidence::is_angle`] over `arguments` (the trigonometric arguments
+    /// found without those terms), as [`Angles::why`] judges over the whole mechanism (an
+    /// unknown an `eq` sets to `2 * psi` is one where `psi` is one apart from them), but not the
+    /// angle of a term found swapped.
     fn apart(&self, g: &Graph, leaf: Leaf, arguments: &[NodeId]) -> bool {
-        let placed = self.placed_as_lengths.contains(&leaf);
-        !self.swapped.contains(&leaf)
-            && (self.degrees.contains(&leaf) || is_angle(g, leaf, arguments, &self.residuals, placed))
-    }
-}
-
-/// Whether `leaf` is an angle of the kinematics: it enters a sine, cosine or tangent (among
-/// `arguments`) as a multiple of itself (`l @ q`, `sin(2 * q)`), or an equation sets it to an
-/// angle. A name `placed` as a length (a coordinate of a position, the length of `@`) that
-/// enters an argument only as a fraction (`sin(x / 2)`) is of no certain kind, and no angle.
-fn is_angle(g: &Graph, leaf: Leaf, arguments: &[NodeId], residuals: &[NodeId], placed: bool) -> bool {
-    let set = || residuals.iter().any(|&r| sets_to_angle(g, leaf, r));
-    match placed {
-        true => multiples::in_whole_multiple(g, leaf, arguments) || set(),
-        false => multiples::in_whole_angle(g, leaf, arguments) || set(),
+        let evidence = Evidence {
+            g,
+            residuals: &self.residuals,
+            arguments,
+            degrees: &self.degrees,
+            placed: &self.placed_as_lengths,
+            swapped: &self.swapped,
+        };
+        !self.swapped.contains(&leaf) && evidence.is_angle(leaf, &mut Verdicts::default())
     }
 }
 

@@ -17,6 +17,17 @@ pub(super) fn key(name: &Ident) -> String {
     name.unraw().to_string()
 }
 
+/// The name of the parameter, input or unknown `leaf`.
+pub(super) fn leaf_name(lw: &Lowerer, leaf: Leaf) -> Option<String> {
+    let named = |s: &Symbol| match (leaf, s) {
+        (Leaf::Param(i), Symbol::Param(j))
+        | (Leaf::Input(i), Symbol::Input(j))
+        | (Leaf::Unknown(i), Symbol::Unknown(j)) => *j == i,
+        _ => false,
+    };
+    lw.scope.symbols.iter().find(|(_, (s, _))| named(s)).map(|(k, _)| k.clone())
+}
+
 fn describe(s: Symbol) -> &'static str {
     match s {
         Symbol::Param(_) => "a parameter",
