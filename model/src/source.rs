@@ -22,7 +22,9 @@ pub const MAX_SOURCE_BYTES: usize = 1 << 20;
 /// One message of a rejected declaration, at a place in its text.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
-    /// The message, exactly as `mechanism!` reports it.
+    /// The message, as `mechanism!` reports it. Where a character starts no token (`−`, `°`),
+    /// its first line is the compiler's and a `help:` line after it says what to write: the
+    /// compiler prints its own help apart from the message.
     pub message: String,
     /// Byte range in the text (empty when the message is about the whole text).
     pub range: Range<usize>,
