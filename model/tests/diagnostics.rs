@@ -291,6 +291,15 @@ fn signs_from_documents_are_told_what_to_write() {
             "\\u{2018}",
             "`\u{2018}` (U+2018) looks like `'`; a declaration has no character literals: write `\"` around a text",
         ),
+        ("a * \u{221a}phi", "\\u{221a}", "`\u{221a}` (U+221A) is no operator: write a square root as `sqrt(x)`"),
+        (
+            "a\u{207b}\u{b9} * phi",
+            "\\u{207b}",
+            "`\u{207b}` (U+207B) is no operator: write a negative power as `x ^ -1` or `pow(x, -1)`, a reciprocal \
+             as `1 / x`",
+        ),
+        ("\u{bd} * a * phi", "\\u{bd}", "`\u{bd}` (U+00BD) is no number: write `1 / 2`"),
+        ("a * \u{ff08}phi)", "\\u{ff08}", "`\u{ff08}` (U+FF08) looks like `(`; write `(`"),
     ];
     for (expr, escaped, help) in cases {
         let text = format!("pub struct S {{\n{body}    eq e: x == {expr};\n}}\n");
@@ -301,6 +310,19 @@ fn signs_from_documents_are_told_what_to_write() {
         let got: Vec<(&str, usize, usize)> = d.items.iter().map(|i| (i.message.as_str(), i.line, i.column)).collect();
         assert_eq!(got, [(message.as_str(), 5, column)], "{text}");
     }
+}
+
+/// A name written with a Greek letter, as a paper writes the angle (`φ`), is told the name of the
+/// declaration that spells it out, by the reader as by the macro.
+#[test]
+fn a_greek_letter_is_told_the_name_that_spells_it_out() {
+    let text =
+        "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == a * \u{3c6};\n}\n";
+    let Err(ReadError::Rejected(d)) = Model::read("greek.kl", text) else { panic!("accepted: {text}") };
+    let got: Vec<(&str, usize, usize)> = d.items.iter().map(|i| (i.message.as_str(), i.line, i.column)).collect();
+    let message = "unknown name `\u{3c6}`; did you mean `phi`? (declare it with `params`, `input`, `unknowns` or `let` \
+                   before using it)";
+    assert_eq!(got, [(message, 5, 20)], "{text}");
 }
 
 /// A declaration written on one long line (generated, or a table named by mistake) is shown

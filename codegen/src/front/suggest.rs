@@ -6,20 +6,60 @@
 /// when it has 4 letters or more and at least half the candidate's (`sensitiv`). A short name
 /// is never close to a long candidate it is only the start of. The nearest ignoring case
 /// comes first, so that `Sin` is `sin` and not `min` (both one edit away) and `PI` is `pi`;
-/// then the nearest as written; ties are broken by name so the message is deterministic.
+/// then the nearest as written; ties are broken by name so the message is deterministic. A name
+/// written with Greek letters, as a formula from a paper writes it (`φ`, `θ2`), is the candidate
+/// that spells them out (`phi`, `theta2`) before any other.
 pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> Option<&'a String> {
     // The distance is quadratic in the lengths: long names get no suggestion.
     const LONGEST: usize = 64;
     if name.chars().count() > LONGEST {
         return None;
     }
+    let spelled = spelled_out(name);
     let lower = name.to_lowercase();
+    let candidates: Vec<&String> = candidates.collect();
+    if let Some(spelled) = spelled
+        && let Some(c) = candidates.iter().find(|c| ***c == spelled)
+    {
+        return Some(c);
+    }
     candidates
+        .into_iter()
         .filter(|c| c.chars().count() <= LONGEST)
         .map(|c| (edit_distance(name, c), edit_distance(&lower, &c.to_lowercase()), c))
         .filter(|(d, folded, c)| *folded == 0 || close(&lower, &c.to_lowercase(), *folded.min(d)))
         .min_by(|a, b| a.1.cmp(&b.1).then_with(|| a.0.cmp(&b.0)).then_with(|| a.2.cmp(b.2)))
         .map(|(_, _, c)| c)
+}
+
+/// `name` with each Greek letter spelt out in the Latin letters a name of the language uses
+/// (`φ2` is `phi2`, `Δx` is `deltax`), or `None` where it has no Greek letter.
+fn spelled_out(name: &str) -> Option<String> {
+    const LETTERS: [&str; 25] = [
+        "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda", "mu", "nu",
+        "xi", "omicron", "pi", "rho", "sigma", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega",
+    ];
+    let mut greek = false;
+    let spelled = name
+        .chars()
+        .flat_map(|c| {
+            // Lower case from U+03B1 (alpha) to U+03C9 (omega), U+03C2 the final sigma; capitals
+            // 0x20 below them; the symbol forms of phi and theta.
+            let index = match c {
+                '\u{03b1}'..='\u{03c9}' => Some(c as u32 - 0x03b1),
+                '\u{0391}'..='\u{03a9}' if c != '\u{03a2}' => Some(c as u32 - 0x0391),
+                '\u{03d5}' => Some(0x03c6 - 0x03b1),
+                '\u{03d1}' => Some(0x03b8 - 0x03b1),
+                _ => None,
+            };
+            greek |= index.is_some();
+            match index {
+                Some(i) => LETTERS[i as usize].chars().collect::<Vec<_>>(),
+                None => vec![c],
+            }
+        })
+        .collect();
+    greek.then_some(spelled)
 }
 
 /// Whether `candidate`, `distance` edits from `name` (both in lower case), is close enough to
@@ -90,6 +130,16 @@ mod tests {
         for short in ["sen", "new", "ds", "fast", "sent", "newtonian_solver"] {
             assert_eq!(similar(short, options.iter()), None, "{short}");
         }
+        // A Greek letter is the name that spells it out, before any other.
+        let angles: Vec<String> = ["phi", "psi", "theta2", "deltax", "pi"].iter().map(|s| s.to_string()).collect();
+        for (greek, latin) in
+            [("φ", "phi"), ("ϕ", "phi"), ("ψ", "psi"), ("Ψ", "psi"), ("θ2", "theta2"), ("Δx", "deltax")]
+        {
+            assert_eq!(similar(greek, angles.iter()).map(String::as_str), Some(latin), "{greek}");
+        }
+        assert_eq!(similar("ω", angles.iter()), None, "no `omega` among the names");
+        assert_eq!(spelled_out("phi"), None);
+        assert_eq!(spelled_out("ςσΣ").as_deref(), Some("sigmasigmasigma"));
         // A one-letter name is never "close" to another one-letter name.
         let short: Vec<String> = vec!["a".into()];
         assert_eq!(similar("b", short.iter()), None);
