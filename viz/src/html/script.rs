@@ -152,7 +152,10 @@ pub(crate) const SCRIPT: &str = r#"
   }
   function tick(now) {
     if (!playing) { return; }
-    var i = Math.round(position((now - start) / (1000 * D.seconds) + from) * (n - 1));
+    // A frame's time is when the browser began it, which can be before `play` read the clock
+    // (a click handled within that frame, or the page's first frame): the time played is
+    // never negative, so the pose stays within the frames.
+    var i = Math.round(position(Math.max(0, now - start) / (1000 * D.seconds) + from) * (n - 1));
     if (i !== current) { move(i); }
     window.requestAnimationFrame(tick);
   }
