@@ -177,14 +177,15 @@ fn awkward(values: &'static [f64], angle: bool) -> HtmlConfig {
 }
 
 /// Sets of values a readout may meet: zeros of either sign and values rounding to zero among
-/// ordinary ones, micrometres, a billion and more, subnormals, the largest readouts allowed,
-/// values rounding up to the next power of ten, angles of a fraction of a hundredth of a
-/// degree and of many turns.
-const AWKWARD: [(&[f64], bool); 9] = [
+/// ordinary ones, micrometres, a billion and more, subnormals, lengths of about 1e-300, the
+/// largest readouts allowed, values rounding up to the next power of ten, angles of a fraction
+/// of a hundredth of a degree and of many turns.
+const AWKWARD: [(&[f64], bool); 10] = [
     (&[0.0, -0.0, -1e-9, 1e-9, 3.0, -2.99999, -0.00004, 2.5], false),
     (&[-0.0, -4e-6, 5.661e-7, -5.661e-7, 1e-12, -1e-15, 9.99996e-6, 0.0], false),
     (&[1589571631.0, -4e9, 0.4, -0.4, 123456789.0, -99999.5, 0.0], false),
     (&[5e-324, -1e-310, 0.0, -0.0, 2.2e-308], false),
+    (&[2.725e-300, -1e-300, 0.0, 1.5e-304], false),
     (&[1e100, -3.3e99, 7.0, -0.0, 1e95], false),
     (&[99999.7, -0.01, 12.5, 0.0], false),
     (&[0.00012, -0.0000999, 3e-5, 0.0], false),

@@ -30,9 +30,11 @@ pub(crate) struct Format {
 /// beyond, a power of ten, as the charts' axes label tiny and huge values.
 const DECIMALS: std::ops::Range<f64> = 1e-4..1e5;
 
-/// The finest last digit: values below about `1e-295` read `0` (their digits beyond are not
-/// those of a normal f64 any more).
-const FINEST: i32 = -300;
+/// The finest last digit: the place of the smallest normal f64's leading digit (2.2e-308),
+/// whose power of ten, 1e308, `Format::units` can still scale by. Values down to about
+/// 1e-304 keep their five digits, as at every other scale; smaller ones keep the digits down
+/// to 1e-308, and subnormal ones, whose digits are no longer an f64's, read `0`.
+const FINEST: i32 = -308;
 
 impl Format {
     /// The format of a readout of kind `kind` whose values reach `max` in magnitude (shown
@@ -115,7 +117,10 @@ mod tests {
         assert_eq!(texts(&m, &[1e100, -3.3e99]), ["1.0000e100", "-3.300e99"]);
         // Rounding up to the next power of ten keeps the digits down to the same place.
         assert_eq!(texts(&m, &[9.99996e-6, 1e-6]), ["1.00000e-5", "1.0000e-6"]);
-        // Below the finest place a normal f64 keeps: zero.
+        // Lengths of about 1e-300 (a mechanism in units 1e300 times too large): five digits,
+        // as at every other scale; below the finest place a normal f64 keeps: zero.
+        assert_eq!(texts(&m, &[2.725e-300, -1e-300, 0.0]), ["2.7250e-300", "-1.0000e-300", "0"]);
+        assert_eq!(texts(&m, &[2.2e-308, 1e-310, 5e-324]), ["2e-308", "0", "0"]);
         assert_eq!(texts(&m, &[1e-310, 5e-324]), ["0", "0"]);
         // Angles in degrees to a hundredth, and as other values from 1e5 degrees.
         assert_eq!(texts(&Kind::Angle, &[359.999, -0.001, 12.5]), ["360.00", "0.00", "12.50"]);
