@@ -331,6 +331,22 @@ fn bad_sweep_arguments_are_errors() {
     assert!(matches!(first, Err(Error::NoAssembly { .. })), "{first:?}");
 }
 
+/// A sweep of more intervals than an analysis holds is refused when it is made: `usize::MAX`
+/// samples were accepted, and `run` or `table` on such a sweep stepped without end, keeping
+/// every state. The largest count allowed is still a lazy sweep one can take from.
+#[test]
+fn a_sweep_of_more_samples_than_an_analysis_holds_is_refused() {
+    let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let g = m.guess(0.0);
+    let most = kinloop::analysis::MAX_SAMPLES + 1;
+    for samples in [most + 1, u32::MAX as usize, usize::MAX] {
+        let e = m.sweep(0.0, 1.0, samples, &g).map(|_| ());
+        assert!(matches!(&e, Err(Error::InvalidArgument(s)) if s.contains("MAX_SAMPLES")), "{samples}: {e:?}");
+    }
+    let first: Vec<_> = m.sweep(0.0, 1.0, most, &g).unwrap().take(2).collect();
+    assert!(first.len() == 2 && first.iter().all(Result::is_ok), "{first:?}");
+}
+
 /// A traced curve closes where it comes back through its start, not where it comes near it. A
 /// gear-lever drive whose gear ratio `u` is not whole does not repeat its motion after a turn of
 /// the crank (the planet turns by `(1 - u) 2 pi` about its pin, so the pin is elsewhere), and

@@ -295,7 +295,8 @@ where
     /// `|from|` is far larger than `|to|` (`sweep_at` lands on its inputs exactly). One sample
     /// is the state at `from` alone, with the range to `to` checked as a longer sweep's is (a
     /// range too long for a sweep is refused before any step: a program's test of a range it
-    /// means to sweep). An angle parameter beyond the configuration's
+    /// means to sweep). More than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) intervals
+    /// between the samples are [`Error::InvalidArgument`]. An angle parameter beyond the configuration's
     /// [`largest_precise_angle`](crate::NewtonConfig::largest_precise_angle) is refused here
     /// ([`Mechanism::check_param_angles`]), once, not at each sample.
     pub fn new(m: &'m M, from: [f64; NI], to: [f64; NI], samples: usize, guess: [f64; N]) -> Result<Self, Error> {
@@ -321,6 +322,12 @@ where
         if samples == 0 {
             return Err(Error::InvalidArgument("a sweep needs at least one sample".into()));
         }
+        // More than an analysis holds would step for years, and `run` or `table` would keep
+        // every state until memory ran out (`usize::MAX` samples ran without end). Counted in
+        // intervals, as `Jet::sample` counts them: a turn of `MAX_SAMPLES` samples is swept with
+        // its end (`dynamics::turn_states`).
+        crate::analysis::check_sample_count("intervals between a sweep's samples", samples - 1)
+            .map_err(Error::InvalidArgument)?;
         if m.block_count() > DetSigns::CAPACITY {
             return Err(Error::InvalidArgument(format!(
                 "`{}` has {} blocks; a sweep watches the assembly mode of at most {} (split the mechanism)",
