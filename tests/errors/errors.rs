@@ -185,3 +185,39 @@ fn a_configuration_out_of_range_states_the_range() {
     let e = NelderMead::default().with_max_evaluations(0).validate().unwrap_err();
     assert!(said(e).contains("NelderMead::max_evaluations is out of its valid range, at least 1"));
 }
+
+/// Levenberg-Marquardt's steps are the same relative to the problem's size in any unit, its stop
+/// is not: `tol` is a residual norm in the residuals' unit. The documentation said any magnitude
+/// gave the same relative answer; the default `tol` takes the start of the same problem in
+/// micrometres (residuals in square micrometres, 1e-12 of the metres' ones) as converged. A
+/// `tol` scaled with the residuals, or `0`, gives the same relative answer in every unit.
+#[test]
+fn levenberg_marquardt_stops_at_a_tolerance_in_the_residuals_unit() {
+    use kinloop::analysis::optimize::LevenbergMarquardt;
+    // x^2 + y^2 = 4 s^2, x y = s^2: the root (1.9319 s, 0.5176 s), from (2 s, 0.1 s).
+    let solve = |s: f64, lm: LevenbergMarquardt| {
+        let f = move |v: &[f64; 2]| {
+            let [x, y] = *v;
+            Ok(([x * x + y * y - 4.0 * s * s, x * y - s * s], [[2.0 * x, 2.0 * y], [y, x]]))
+        };
+        let m = lm.minimize(f, [2.0 * s, 0.1 * s]).unwrap();
+        (m.converged(), m.x.map(|v| v / s), m.evaluations)
+    };
+    let root = (2.0 + 3f64.sqrt()).sqrt();
+    let exact = [root, 1.0 / root];
+    let (ok, metres, _) = solve(1.0, LevenbergMarquardt::default());
+    assert!(ok && (0..2).all(|i| (metres[i] - exact[i]).abs() < 1e-9), "{metres:?}");
+    for s in [1e-6, 1e-150, 1e6, 1e150] {
+        // The default `tol` is absolute: in micrometres the start is already below it.
+        let (ok, x, evaluations) = solve(s, LevenbergMarquardt::default());
+        if s < 1.0 {
+            assert!(ok && evaluations == 1 && x == [2.0, 0.1], "{s:e}: {x:?} in {evaluations}");
+        }
+        // Scaled as the residuals are, the same relative answer; to the rounding with `tol` 0.
+        for (tol, within) in [(1e-10 * s * s, 1e-9), (0.0, 1e-15)] {
+            let (ok, x, _) = solve(s, LevenbergMarquardt::default().with_tol(tol));
+            let within = (0..2).all(|i| (x[i] - exact[i]).abs() < within * exact[i]);
+            assert!(within && (ok || tol == 0.0), "{s:e}, tol {tol:e}: {x:?}");
+        }
+    }
+}

@@ -7,8 +7,14 @@ use crate::error::Error;
 /// problem (e.g. from generated sensitivities). Steps solve
 /// `(J^T J + lambda diag(J^T J)) dx = -J^T r`; a failed evaluation (e.g. a design that cannot
 /// assemble) counts as a rejected step. The norms and the normal equations are scaled by powers
-/// of two (exactly), so residuals and variables of any magnitude, from about 1e-300 to 1e300,
-/// give the same relative answer: nothing is squared out of the range of `f64`.
+/// of two (exactly), so that nothing is squared out of the range of `f64`: residuals and
+/// variables of any magnitude, from about 1e-300 to 1e300, take the same steps relative to their
+/// size. The stop is not relative: [`LevenbergMarquardt::tol`] is a residual norm in the
+/// residuals' own unit, so a problem written in another unit needs its `tol` scaled as its
+/// residuals are (the default `1e-10` accepts as converged the start of a problem whose
+/// residuals are smaller than that, closure errors in square metres of a mechanism a
+/// micrometre across); a `tol` of `0` runs until no step lowers the norm, the same relative
+/// answer in any unit.
 ///
 /// ```
 /// use kinloop_runtime::analysis::optimize::LevenbergMarquardt;
@@ -23,8 +29,8 @@ use crate::error::Error;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct LevenbergMarquardt {
-    /// Converged when the residual norm falls below this (finite and not negative; default
-    /// `1e-10`).
+    /// Converged when the residual norm falls to this (finite and not negative; default
+    /// `1e-10`), in the residuals' unit: an absolute bound, to be scaled with the residuals.
     pub tol: f64,
     /// Stop after this many evaluations (at least 1, the start's; default `200`).
     pub max_evaluations: usize,
