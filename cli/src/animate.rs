@@ -102,6 +102,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
              leave out {option}"
         )));
     }
+    something_to_draw(model)?;
     if req.grid {
         if req.cam.is_some() {
             return Err(usage("--cam draws a cam turning with the one input: a sweep, not a --grid"));
@@ -400,6 +401,22 @@ fn page_config(name: &str, req: &Request) -> HtmlConfig {
         config = config.show(col.as_str());
     }
     config
+}
+
+/// A usage error where the declaration has nothing to draw: with no loop and no point, its
+/// default drawing has no item, no traced point and no label. Found before anything is solved:
+/// the sweep (or the grid) ran first and the drawing then failed with exit code 1 as an
+/// "invalid drawing setting", a setting no one gave.
+fn something_to_draw(model: &mut Model) -> Result<(), Failed> {
+    let drawing = model.drawing().into_drawing();
+    if drawing.items.is_empty() && drawing.traces.is_empty() && drawing.labels.is_empty() {
+        return Err(usage(format!(
+            "{} declares no loop and no point: there is nothing to animate; declare the points to draw, \
+             `point p = ...;`",
+            model.name()
+        )));
+    }
+    Ok(())
 }
 
 /// The model's default drawing, its notes (what it could not draw) listed on standard error.

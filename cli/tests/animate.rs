@@ -631,3 +631,29 @@ fn out_dash_is_standard_output() {
     assert!(stderr.contains("--out - writes the animation to standard output: give its format"), "{stderr}");
     assert!(o.stdout.is_empty() && !Path::new("-").exists());
 }
+
+/// A declaration of no loop and no point has nothing to draw: a usage error that says to
+/// declare a point, for a sweep and a grid, in either format, with no file written. It swept
+/// first and then failed with exit code 1, "invalid drawing setting: the drawing has no item to
+/// draw", naming a setting no one gave.
+#[test]
+fn nothing_to_draw_is_a_usage_error() {
+    let decl = out("nothing_to_draw.kl");
+    let text = "pub struct Outputs {\n    params a = 1;\n    inputs phi, psi;\n    output o = a * phi + psi;\n}\n";
+    std::fs::write(&decl, text).expect("the declaration written");
+    let d = decl.display().to_string();
+    for (name, grid) in [("nothing.svg", false), ("nothing.html", false), ("nothing_grid.html", true)] {
+        let path = out(name);
+        let p = path.display().to_string();
+        let mut args = vec!["animate", d.as_str(), "--from", "0,0", "--to", "1,1", "--out", p.as_str()];
+        if grid {
+            args.push("--grid");
+        }
+        let o = kinloop(&args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains("Outputs declares no loop and no point"), "{name}: {stderr}");
+        assert!(stderr.contains("`point p = ...;`"), "{name}: {stderr}");
+        assert!(!path.exists(), "{name} was written");
+    }
+}
