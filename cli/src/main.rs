@@ -731,6 +731,7 @@ fn load(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
 fn solvable(file: &Path, params: Option<&str>) -> Result<Model, Failed> {
     let model = load(file, params)?;
     params::require_values(&model)?;
+    params::require_precise_angles(&model)?;
     Ok(model)
 }
 

@@ -3,6 +3,7 @@
 use crate::numbers::number;
 use crate::{Failed, exit};
 use kinloop_model::Model;
+use kinloop_runtime::Number;
 
 /// Sets the parameters listed in `list` (`name=value` separated by commas), each at most once.
 pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
@@ -66,4 +67,35 @@ pub fn require_values(model: &Model) -> Result<(), Failed> {
         "{}: {what} {names} {verb} no value (the declaration gives {them} no default): give {them} with --params {give}",
         model.name()
     )))
+}
+
+/// Every angle parameter of `model` is within the largest angle its solves take precisely
+/// (`NewtonConfig::largest_precise_angle` of its configuration). Otherwise a usage error naming
+/// the parameter and how to give it: every solve refuses it (an angle added to it is lost to
+/// rounding), with the library's advice, `phi0.rem_euclid(TAU)`, which a command line cannot
+/// follow, and exit code 1 as if a solve had failed.
+pub fn require_precise_angles(model: &Model) -> Result<(), Failed> {
+    match imprecise_angle(model) {
+        Some(why) => Err(exit::usage(format!("{}: {why}", model.name()))),
+        None => Ok(()),
+    }
+}
+
+/// Why the first angle parameter of `model` beyond the largest angle its solves take precisely
+/// cannot be solved with, in the command line's terms; `None` where there is none.
+pub fn imprecise_angle(model: &Model) -> Option<String> {
+    let bound = model.sweep_config().newton.largest_precise_angle();
+    let k = model.angle_param_beyond(bound)?;
+    let (name, value) = (&model.params()[k], model.param_values()[k]?);
+    // The distance to the next double away from zero: what an angle added to it is rounded to.
+    let spacing = f64::from_bits(value.abs().to_bits() + 1) - value.abs();
+    Some(format!(
+        "parameter `{name}` is an angle of {} rad, beyond {} rad, the largest angle solved precisely: doubles \
+         there are {} rad apart, so an angle added to it is lost to rounding; give it less whole turns, within \
+         {} rad (--params {name}=VALUE, in radians)",
+        Number(value),
+        Number(bound),
+        Number(spacing),
+        Number(bound)
+    ))
 }

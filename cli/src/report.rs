@@ -58,6 +58,10 @@ fn motion(model: &mut Model) -> Option<String> {
     if !one_angle || model.param_values().iter().any(Option::is_none) {
         return None;
     }
+    // Said in the command line's terms: the solves' refusal gives the library's advice.
+    if let Some(why) = crate::params::imprecise_angle(model) {
+        return Some(format!("not determined: {why}"));
+    }
     let input = model.inputs()[0].clone();
     let found = match model.assembly_near(&[0.0], ASSEMBLY_SAMPLES) {
         Ok(Some(found)) => found,

@@ -550,3 +550,35 @@ fn a_negative_flat_angle_is_the_options_value() {
         assert!(err.contains(says) && !err.contains("unexpected argument"), "{angle}: {err}");
     }
 }
+
+/// An angle parameter beyond the largest angle a solve takes precisely (`phi0=1e17` of the
+/// dwell cam) is a usage error of every command that solves, naming the parameter and saying to
+/// give it less whole turns with `--params`; `check` says the same of the motion it cannot
+/// tell. It failed each solve with exit code 1 and the library's advice, `phi0.rem_euclid(TAU)`,
+/// Rust a command line cannot follow.
+#[test]
+fn an_angle_parameter_too_large_to_solve_precisely_is_a_usage_error() {
+    let cam = shipped("dwell_cam.kl");
+    let runs: [&[&str]; 4] = [
+        &["solve", &cam, "--at", "0"],
+        &["sweep", &cam, "--from", "0", "--to", "1"],
+        &["extremes", &cam, "--from", "0", "--to", "1"],
+        &["cam", &cam, "--point", "follower", "--guide", "0,1"],
+    ];
+    for args in runs {
+        let out = common::kinloop(&[args, &["--params", "phi0=1e17"]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("parameter `phi0` is an angle of 1e17 rad"), "{args:?}: {err}");
+        assert!(err.contains("give it less whole turns") && err.contains("--params phi0=VALUE"), "{args:?}: {err}");
+        assert!(!err.contains("rem_euclid") && out.stdout.is_empty(), "{args:?}: {err}");
+    }
+    let out = common::kinloop(&["check", &cam, "--params", "phi0=1e17"]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(report.contains("motion: not determined: parameter `phi0` is an angle of 1e17 rad"), "{report}");
+    assert!(report.contains("--params phi0=VALUE") && !report.contains("rem_euclid"), "{report}");
+    // Within the bound (a few turns out) it solves as before.
+    let out = common::kinloop(&["solve", &cam, "--at", "0", "--params", "phi0=12.7"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

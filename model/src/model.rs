@@ -617,8 +617,31 @@ impl Model {
     }
 
     /// The first angle parameter whose value is finite and larger in magnitude than `bound`
-    /// (the compiled mechanism's `angle_param_beyond`).
-    pub(crate) fn angle_param_beyond(&self, bound: f64) -> Option<usize> {
+    /// (the compiled mechanism's `angle_param_beyond`), by its index in [`Model::params`]. With
+    /// `bound` a configuration's `NewtonConfig::largest_precise_angle`, the parameter every solve
+    /// with that configuration refuses ([`StepError::ImpreciseParam`], `Error::InvalidArgument`
+    /// from a kernel): a program that takes the parameters from its user can say so in its own
+    /// terms before it solves.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// use kinloop_runtime::NewtonConfig;
+    /// let text = "pub struct Lever {
+    ///     params r = 1, tilt = 0.3;
+    ///     input phi;
+    ///     point p = r @ (phi + tilt);
+    /// }";
+    /// let mut m = Model::read("lever.kl", text).unwrap();
+    /// let bound = NewtonConfig::default().largest_precise_angle();
+    /// assert_eq!(m.angle_param_beyond(bound), None);
+    /// m.set_param("tilt", 1e17);
+    /// assert_eq!(m.angle_param_beyond(bound), Some(1));
+    /// // A length is no angle: however large, it is not one of these.
+    /// m.set_param("tilt", 0.3);
+    /// m.set_param("r", 1e17);
+    /// assert_eq!(m.angle_param_beyond(bound), None);
+    /// ```
+    pub fn angle_param_beyond(&self, bound: f64) -> Option<usize> {
         let beyond = |v: f64| v.abs() > bound && v.is_finite();
         self.angle_params.iter().copied().find(|&k| self.param_values[k].is_some_and(beyond))
     }
