@@ -539,8 +539,9 @@ fn table(report: &SynthesisReport, u: &Units) -> String {
 
 /// A note where the best valid candidate misses its targets by as much as they lie from their
 /// centre (the mean of a path's points, the middle of a function's values) or more: no better
-/// than a point that does not move, the optimum within the bounds of `--vary` of targets those
-/// designs cannot reach. `path`: the targets are points (their last two columns), otherwise
+/// than a point that does not move (an output that does not change, for a function: its targets
+/// are values, and no point of the mechanism is fitted), the optimum within the bounds of
+/// `--vary` of targets those designs cannot reach. `path`: the targets are points (their last two columns), otherwise
 /// values (their last column), in the unit the errors are written.
 fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path: bool) -> Option<String> {
     let best = report.best()?;
@@ -550,11 +551,12 @@ fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path
         false => value_reach(rows.iter().map(|r| r[width - 1]), units.turn),
     };
     let error = best.max_error * units.error;
+    let still = if path { "a point that does not move" } else { "an output that does not change" };
     (reach > 0.0 && error >= reach).then(|| {
         format!(
             "note: the best candidate misses its targets by {}, as much as they lie from their centre ({}) or \
-             more: no better than a point that does not move; the targets are likely out of reach of the \
-             designs --vary allows (widen its bounds, or vary more parameters)",
+             more: no better than {still}; the targets are likely out of reach of the designs --vary allows \
+             (widen its bounds, or vary more parameters)",
             Number(error),
             Number(reach)
         )

@@ -451,7 +451,9 @@ fn a_targets_file_that_is_not_text_says_where() {
 
 /// Targets no design of the bounds can reach (a circle of radius 1000 about a four-bar of size
 /// 3): the best candidate, valid, misses them by as much as they lie from their centre, and a
-/// note says so (and, for a function in degrees, in degrees). Exit code 0: the candidate is valid.
+/// note says so (and, for a function in degrees, in degrees, its best likened to an output that
+/// does not change: it was likened to a point that does not move, where no point is fitted).
+/// Exit code 0: the candidate is valid.
 #[test]
 fn targets_out_of_reach_get_a_note() {
     let four_bar = shipped("coupler_four_bar.kl");
@@ -461,11 +463,14 @@ fn targets_out_of_reach_get_a_note() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "{err}");
     assert!(err.contains("note: the best candidate misses its targets by 1000.") && err.contains("(1000)"), "{err}");
+    assert!(err.contains("no better than a point that does not move"), "{err}");
     let function = file("synth_function.csv", "0,90\n90,80\n180,100\n");
     let args = ["synth", &four_bar, "--targets", &function, "--function", "phi:gamma", "--vary", vary, "--deg"];
     let out = kinloop(&[&args[..], &["--starts", "8"]].concat());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("as much as they lie from their centre (10)"), "{err}");
+    assert!(err.contains("no better than an output that does not change;"), "{err}");
+    assert!(!err.contains("a point that does not move"), "{err}");
 }
 
 /// Angle targets on both sides of the half turn (179, -179.5, 179.5 and -179 degrees of the
