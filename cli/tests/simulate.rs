@@ -267,6 +267,22 @@ fn a_time_too_short_for_a_step_is_a_usage_error() {
     assert!((omega / 150.0 - 1.0).abs() <= 1e-15, "{omega}");
 }
 
+/// A machine started at rest over a tiny `--time` a step does span (subnormal times, above the
+/// time's rounding of 3.9e-323) is simulated: its first step, a millionth of the span, was below
+/// that rounding or 0, and the run failed as "the motion is singular at phi = 0, speed 0 (t =
+/// 0) ... is this a limit position?" (exit code 1), of a machine with nothing singular about it.
+#[test]
+fn a_tiny_time_from_rest_is_simulated() {
+    let engine = shipped("engine.kl");
+    for time in ["1e-317", "1e-320", "1e-322"] {
+        let out = kinloop(&["simulate", &engine, "--time", time, "--samples", "2"]);
+        let (_, rows) = csv(&out);
+        let [t, phi, _] = rows[1][..] else { panic!("three columns: {rows:?}") };
+        // From rest the crank has not moved: half its acceleration times the square of `t`.
+        assert_eq!((t, phi), (time.parse().expect("a number"), 0.0), "--time {time}");
+    }
+}
+
 /// The first row is the start at time 0, its angle and speed in degrees as given: `--start 30`
 /// was written `29.999999999999996` (its radians times `180/pi`). The same state as the run in
 /// radians from the same start, to a rounding of the conversion.

@@ -239,7 +239,12 @@ pub(crate) fn dopri5_judged<const D: usize>(
             why: "is beyond the range of f64 against the tolerances: express the model in other units",
         });
     }
-    let mut h = initial_step(&y, d1, t_end - t0, cfg);
+    // At least twice the time's resolution at the start (and within the span, which is longer
+    // than that: `check_config`): a millionth of a span of subnormal times (`--time 1e-320`)
+    // was a first step below it, or 0, and a motion with nothing singular about it was reported
+    // singular at its start.
+    let first = initial_step(&y, d1, t_end - t0, cfg).max(2.0 * step_floor(t0, t0));
+    let mut h = first.min(cfg.h_max).min(t_end - t0);
     // The last accepted step's length (none yet): a longer step is the error control's guess.
     let mut accepted_h = f64::INFINITY;
     for _ in 0..cfg.max_steps {

@@ -373,9 +373,21 @@ fn a_span_below_the_time_s_rounding_is_refused() {
         let r = dopri5(oscillator(1.0), t0, [1.0, 0.0], t_end, &cfg, |_, _| Ok(false));
         assert!(matches!(r, Err(DynamicsError::BadValue { what: "end time", .. })), "{t0} {t_end}: {r:?}");
     }
-    // Just beyond the floor a step is taken.
-    let (t, _) = dopri5(oscillator(1.0), 0.0, [1.0, 0.0], 1e-300, &cfg, |_, _| Ok(false)).unwrap();
-    assert_eq!(t, 1e-300);
+    // Beyond the floor a step is taken, over a span of subnormal times too. From rest (a
+    // machine started at speed 0, `kinloop simulate --time 1e-320`) the first step is a
+    // millionth of the span, below the floor there or 0: such spans, from ten units of the last
+    // place to 1e-317, were reported singular motions at their start.
+    let from_rest = |_: f64, y: &[f64; 2]| Ok([y[1], 1.0]);
+    for t_end in [1e-300, 1e-310, 1e-317, 1e-320, 5e-323] {
+        let r = dopri5(oscillator(1.0), 0.0, [1.0, 0.0], t_end, &cfg, |_, _| Ok(false));
+        let (t, y) = r.unwrap_or_else(|e| panic!("{t_end:e}: {e}"));
+        // `-sin t` is `-t` there, to the few units of the last place a subnormal end holds.
+        assert!(t == t_end && y[0] == 1.0 && (y[1] + t_end).abs() <= 0.2 * t_end, "{t_end:e}: {y:?}");
+        let r = dopri5(from_rest, 0.0, [0.0, 0.0], t_end, &cfg, |_, _| Ok(false));
+        let (t, y) = r.unwrap_or_else(|e| panic!("from rest, {t_end:e}: {e}"));
+        // The speed `t`; the position `t^2 / 2`, 0 or a few units of the last place.
+        assert!(t == t_end && y[0] <= t_end && (y[1] - t_end).abs() <= 0.2 * t_end, "{t_end:e}: {y:?}");
+    }
 }
 
 /// A step that ends a few units in the last place short of the span's end leaves a sliver no
