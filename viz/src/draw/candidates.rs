@@ -7,6 +7,7 @@ use super::declared::Draw;
 use super::error::DrawError;
 use super::motion::{Motion, Pose};
 use super::spec::{Drawing, Item, Pt, Scalar, StateRef};
+use super::style::{CONSTRUCTION_DASH, CONSTRUCTION_WIDTH};
 use super::svg::num;
 use crate::escape::escape;
 use crate::html::{HtmlConfig, HtmlError, html_marked};
@@ -160,6 +161,7 @@ impl Placement {
                     angle: angle(a),
                 },
                 Item::Joint { at } => Item::Joint { at: pt(at) },
+                Item::Construction { from, to } => Item::Construction { from: pt(from), to: pt(to) },
             })
             .collect();
         d.traces = std::mem::take(&mut d.traces).into_iter().map(pt).collect();
@@ -189,6 +191,8 @@ enum Shape {
     /// An outline's corners where they are.
     Outline(Vec<[f64; 2]>),
     Joint([f64; 2]),
+    /// A construction line's ends.
+    Construction([[f64; 2]; 2]),
 }
 
 fn finite(p: [f64; 2], what: &str, rank: usize) -> Result<[f64; 2], DrawError> {
@@ -337,6 +341,7 @@ where
                 Shape::Outline(points.iter().copied().map(corner).collect::<Result<_, _>>()?)
             }
             Item::Joint { at: p } => Shape::Joint(at(p)?),
+            Item::Construction { from, to } => Shape::Construction([at(from)?, at(to)?]),
         });
     }
     Ok(Drawn { shapes, path, cut: motion.stopped })
@@ -483,7 +488,7 @@ where
         for s in &d.shapes {
             match s {
                 Shape::Link(pts, _) | Shape::Outline(pts) => pts.iter().for_each(&mut add),
-                Shape::Guide(pts) => pts.iter().for_each(&mut add),
+                Shape::Guide(pts) | Shape::Construction(pts) => pts.iter().for_each(&mut add),
                 Shape::Pivot(p) | Shape::Slider(p, _) | Shape::Joint(p) => add(p),
                 Shape::Gear(c, r) => {
                     add(&[c[0] - r, c[1] - r]);
@@ -597,6 +602,15 @@ where
                         out,
                         r#"<polyline class="link" points="{}" fill="none" stroke="{colour}" stroke-width="2.5" stroke-linecap="round"/>"#,
                         map.pts(pts)
+                    );
+                }
+                // Thin and dashed, with no joint circles: no part of the machine.
+                Shape::Construction(pts) => {
+                    let _ = write!(
+                        out,
+                        r#"<polyline class="construction" points="{}" fill="none" stroke="{colour}" stroke-width="{}" stroke-dasharray="{CONSTRUCTION_DASH}"/>"#,
+                        map.pts(pts),
+                        num(CONSTRUCTION_WIDTH)
                     );
                 }
                 Shape::Outline(pts) => {

@@ -24,10 +24,11 @@ use std::sync::Arc;
 ///   and the block slides on it: the bar keeps one length over the motion drawn, a tenth past
 ///   the block's farthest place and out to the points of the body it is part of (a rocker's
 ///   tip, see [`kinloop_runtime::drawing::Plate::guides`]);
-/// * a vector that is none of these is drawn as a bar between its ends, and a note of the
-///   description says so: the drawing never guesses silently. [`DefaultDrawing::notes`] lists
-///   the notes; [`DefaultDrawing::into_drawing`] carries them ([`Drawing::notes`]), and the
-///   SVG and the interactive page write them under the picture.
+/// * a vector that is none of these is drawn as a thin dashed construction line between its
+///   ends ([`Item::Construction`]), with no joint circles, and a note of the description says
+///   so: the drawing never guesses silently. [`DefaultDrawing::notes`] lists the notes;
+///   [`DefaultDrawing::into_drawing`] carries them ([`Drawing::notes`]), and the SVG and the
+///   interactive page write them under the picture.
 ///
 /// Joints are merged where the macro proves two partial sums equal (see
 /// [`kinloop_runtime::drawing`]); points that coincide only numerically (at the inputs 0,
@@ -315,8 +316,9 @@ impl DefaultDrawing {
                     }
                     items.push(Item::Slider { at: self.pt(seg.to), angle });
                 }
+                // Not a part of the machine: a thin line, with no joint circles to read as a link.
                 SegmentKind::Construction => {
-                    items.push(Item::Link { through: vec![self.pt(seg.from), self.pt(seg.to)], closed: false })
+                    items.push(Item::Construction { from: self.pt(seg.from), to: self.pt(seg.to) })
                 }
             }
         }

@@ -2,11 +2,11 @@
 //! points trace.
 //!
 //! A [`Drawing`] says, at run time, what to draw: links as bars or filled bodies through
-//! points, fixed pivots with ground hatching, sliders with their guides, gears as circles, and
-//! the points whose paths (coupler curves) are traced. A point ([`Pt`]) is one of the
-//! mechanism's `point` outputs by name (its output columns `name.x`, `name.y`), a fixed point,
-//! or an expression of the state (for joints the declaration does not name). A [`Motion`]
-//! records a sweep; the drawing then gives:
+//! points, fixed pivots with ground hatching, sliders with their guides, gears as circles,
+//! construction lines (thin, dashed, with no joints), and the points whose paths (coupler
+//! curves) are traced. A point ([`Pt`]) is one of the mechanism's `point` outputs by name (its
+//! output columns `name.x`, `name.y`), a fixed point, or an expression of the state (for
+//! joints the declaration does not name). A [`Motion`] records a sweep; the drawing then gives:
 //!
 //! * [`Drawing::animate`]: an animated SVG (SMIL, no script: it plays in browsers and in a
 //!   README on a code host) with the traced paths;
@@ -98,6 +98,8 @@ pub use style::Style;
 pub use view::{Canvas, View};
 // A turning guide's length over a motion, for the interactive pages.
 pub(crate) use scene::{guide_at, guide_spans};
+// How a construction line looks, the same on the interactive pages.
+pub(crate) use style::{CONSTRUCTION_DASH, CONSTRUCTION_WIDTH};
 
 // Interactive pages of a drawing (`kinloop::draw::html`), from the crate's `html` module.
 pub use crate::html::{HtmlConfig, HtmlError, Readout, html, html_grid, html_grid_of, html_of};

@@ -4,7 +4,7 @@ use super::annotate::{FONT, LABEL_OFFSET, text_width};
 use super::error::DrawError;
 use super::motion::{Motion, Pose};
 use super::spec::{Drawing, Item, PointFn, Pt, Scalar, StateRef};
-use super::style::Style;
+use super::style::{CONSTRUCTION_WIDTH, Style};
 use super::view::{FAR, View};
 use std::sync::Arc;
 
@@ -51,6 +51,10 @@ pub(crate) enum Shape {
     Joint {
         at: [f64; 2],
     },
+    /// A construction line between its two ends.
+    Construction {
+        pts: [[f64; 2]; 2],
+    },
 }
 
 impl Shape {
@@ -58,6 +62,7 @@ impl Shape {
     pub(crate) fn extent(&self, mut add: impl FnMut([f64; 2])) {
         match self {
             Shape::Link { pts, .. } => pts.iter().for_each(|p| add(*p)),
+            Shape::Construction { pts } => pts.iter().for_each(|p| add(*p)),
             Shape::Pivot { at } | Shape::Slider { at, .. } | Shape::Joint { at } => add(*at),
             Shape::Guide { .. } => self.guide_ends().into_iter().for_each(add),
             Shape::Gear { centre: [x, y], radius: r, .. } | Shape::Outline { centre: [x, y], radius: r, .. } => {
@@ -78,6 +83,7 @@ impl Shape {
         match self {
             Shape::Link { pts, .. } => pts.iter().for_each(|p| square(*p, joint.max(0.5 * style.link_width))),
             Shape::Guide { .. } => self.guide_ends().into_iter().for_each(|p| square(p, 0.5 * style.link_width)),
+            Shape::Construction { pts } => pts.iter().for_each(|p| square(*p, 0.5 * CONSTRUCTION_WIDTH)),
             Shape::Joint { at } => square(*at, joint),
             Shape::Gear { centre, radius, .. } => square(*centre, radius + 3.0),
             Shape::Outline { centre, radius, .. } => square(*centre, radius + 1.5),
@@ -135,6 +141,7 @@ impl Shape {
                 radius: radius * v.scale,
             },
             Shape::Joint { at } => Shape::Joint { at: v.px(*at) },
+            Shape::Construction { pts } => Shape::Construction { pts: pts.map(|p| v.px(p)) },
         }
     }
 }
@@ -213,6 +220,7 @@ fn item_points(item: &Item) -> Vec<&Pt> {
         Item::Pivot { at } | Item::Slider { at, .. } | Item::Joint { at } => vec![at],
         Item::Gear { centre, .. } | Item::Outline { centre, .. } => vec![centre],
         Item::Guide { from, block, body, .. } => [from, block].into_iter().chain(body).collect(),
+        Item::Construction { from, to } => vec![from, to],
     }
 }
 
@@ -269,6 +277,7 @@ impl<'d> BoundItems<'d> {
                 }
                 Item::Pivot { .. } => Shape::Pivot { at: p(0)? },
                 Item::Joint { .. } => Shape::Joint { at: p(0)? },
+                Item::Construction { .. } => Shape::Construction { pts: [p(0)?, p(1)?] },
                 Item::Outline { angle, .. } => {
                     let (pts, radius) = self.outlines[k].clone().unwrap_or_default();
                     let centre = p(0)?;
@@ -520,6 +529,8 @@ impl Scene {
                     dots.extend(pts);
                 }
                 Shape::Guide { .. } => bars.push(shape.guide_ends()),
+                // Kept clear of as a bar is, so that no label covers it; its ends are no joints.
+                Shape::Construction { pts } => bars.push(*pts),
                 Shape::Pivot { at: [x, y] } => {
                     // The triangle, ground line and hatching (see `Shape::ink`).
                     boxes.push([x - 15.0, y + 2.0, x + 15.0, y + 21.0]);

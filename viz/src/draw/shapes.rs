@@ -2,7 +2,7 @@
 //! animated ones (`<animate>`, `<animateTransform>`) through all when a timing is given.
 
 use super::scene::Shape;
-use super::style::Style;
+use super::style::{CONSTRUCTION_DASH, CONSTRUCTION_WIDTH, Style};
 use super::svg::{Timing, animate, animate_transform, num, pair, points, unwrap_degrees};
 use std::fmt::Write;
 
@@ -34,6 +34,7 @@ pub(crate) fn item(out: &mut String, pen: &Pen, shapes: &[&Shape]) {
         Shape::Gear { .. } => gear(out, pen, shapes),
         Shape::Outline { .. } => outline(out, pen, shapes),
         Shape::Joint { .. } => {}
+        Shape::Construction { .. } => construction(out, pen, shapes),
     }
 }
 
@@ -58,6 +59,22 @@ fn link(out: &mut String, pen: &Pen, shapes: &[&Shape], closed: bool) {
     );
     animate(out, "points", &pts, pen.timing);
     let _ = write!(out, "</{tag}>");
+}
+
+/// A construction line: thin and dashed in every layer (the mechanism, its exposures, its
+/// ghosts at events), with no joint circles (see `joints`), so that it never reads as a link.
+fn construction(out: &mut String, pen: &Pen, shapes: &[&Shape]) {
+    let pts: Vec<String> =
+        shapes.iter().map(|s| if let Shape::Construction { pts } = s { points(pts) } else { String::new() }).collect();
+    let _ = write!(
+        out,
+        r#"<polyline class="construction" points="{}" fill="none" stroke="{}" stroke-width="{}" stroke-dasharray="{CONSTRUCTION_DASH}">"#,
+        pts[0],
+        pen.ink,
+        num(CONSTRUCTION_WIDTH)
+    );
+    animate(out, "points", &pts, pen.timing);
+    out.push_str("</polyline>");
 }
 
 /// Opens `<g>` translated to `at` (animated), returns nothing: close with `</g>`.

@@ -113,8 +113,10 @@ impl From<f64> for Scalar {
 /// `1 - cos(pi / 96)`, 0.05 %, of the radius.
 const CIRCLE_CORNERS: usize = 96;
 
-/// One element of a drawing (see the builder methods of [`Drawing`]).
+/// One element of a drawing (see the builder methods of [`Drawing`]). More kinds may be
+/// added: a `match` over it outside this crate needs a wildcard arm.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub enum Item {
     /// A rigid link through points: a bar for two points, a chain of bars or, `closed`, a
     /// filled polygon (a ternary link). Each point gets a joint circle.
@@ -181,6 +183,16 @@ pub enum Item {
     Joint {
         /// The joint's position.
         at: Pt,
+    },
+    /// A construction line from `from` to `to`: a vector of the declaration that is no part of
+    /// the machine (neither a link, a slider nor the frame, see
+    /// [`SegmentKind::Construction`](kinloop_runtime::drawing::SegmentKind::Construction)),
+    /// drawn as a thin dashed line with no joint circles, so that it does not read as a link.
+    Construction {
+        /// Where the line starts.
+        from: Pt,
+        /// Where it ends.
+        to: Pt,
     },
 }
 
@@ -285,6 +297,13 @@ impl Drawing {
             })
             .collect();
         self.outline(centre, points, 0.0)
+    }
+
+    /// A construction line from `from` to `to`: thin and dashed, with no joint circles (see
+    /// [`Item::Construction`]).
+    pub fn construction(mut self, from: impl Into<Pt>, to: impl Into<Pt>) -> Drawing {
+        self.items.push(Item::Construction { from: from.into(), to: to.into() });
+        self
     }
 
     /// A joint circle at `at`.

@@ -3,6 +3,14 @@
 use super::error::DrawError;
 use super::view::MAX_WIDTH;
 
+/// Width in pixels of a construction line ([`Item::Construction`](super::Item::Construction)):
+/// thinner than the ghosts' 1.5, so that it reads as no part of the machine at any pose.
+pub(crate) const CONSTRUCTION_WIDTH: f64 = 1.0;
+
+/// Dashes of a construction line, in pixels: longer than the events' ghosts' (`5 3`), which
+/// are drawn in their own colour too.
+pub(crate) const CONSTRUCTION_DASH: &str = "8 4";
+
 /// How a drawing looks. Sizes are pixels (at most a million, the widest canvas); colours are
 /// SVG colours.
 #[derive(Clone, Debug, PartialEq)]

@@ -4,7 +4,7 @@
 
 use super::chart::px;
 use super::frames::{Frames, Slot};
-use crate::draw::Style;
+use crate::draw::{CONSTRUCTION_DASH, CONSTRUCTION_WIDTH, Style};
 use crate::escape::escape;
 use std::fmt::Write;
 
@@ -174,10 +174,22 @@ fn items(out: &mut String, style: &Style, slots: &[Slot], f: &[i64], pen: &Pen, 
                     px(width)
                 );
             }
+            // Thin and dashed in the ghosts too (their own colour tells them apart).
+            Slot::Construction => {
+                let pts: Vec<String> = (0..2).map(|j| format!("{},{}", t(f[o + 2 * j]), t(f[o + 2 * j + 1]))).collect();
+                let _ = write!(
+                    out,
+                    r#"<polyline{} points="{}" fill="none" stroke="{}" stroke-width="{}" stroke-dasharray="{CONSTRUCTION_DASH}"/>"#,
+                    mark_as(k, "kl-shape kl-construction"),
+                    pts.join(" "),
+                    pen.ink,
+                    px(CONSTRUCTION_WIDTH)
+                );
+            }
         }
         o += slot.len();
     }
-    // Joint circles on top of every item.
+    // Joint circles on top of every item (a construction line has none).
     let mut o = 0;
     let (fill, r) = if pen.ghost { ("none", 2.5) } else { ("white", style.joint_radius) };
     for (k, slot) in slots.iter().enumerate() {

@@ -31,6 +31,9 @@ pub(crate) enum Slot {
     Joint,
     /// A turning guide: a bar between its two ends, 4 numbers, with no joint circles.
     Guide,
+    /// A construction line: a thin dashed line between its two ends, 4 numbers, with no joint
+    /// circles.
+    Construction,
 }
 
 impl Slot {
@@ -39,7 +42,7 @@ impl Slot {
         match self {
             Slot::Link { n, .. } => 2 * n,
             Slot::Pivot | Slot::Joint => 2,
-            Slot::Guide => 4,
+            Slot::Guide | Slot::Construction => 4,
             Slot::Slider { .. } | Slot::Gear { .. } | Slot::Outline { .. } => 3,
         }
     }
@@ -125,6 +128,7 @@ fn item_points(item: &Item) -> Vec<&Pt> {
         Item::Gear { centre, .. } | Item::Outline { centre, .. } => vec![centre],
         // Its ends, which its span over the whole motion places (`Eval::frame`).
         Item::Guide { .. } => Vec::new(),
+        Item::Construction { from, to } => vec![from, to],
     }
 }
 
@@ -224,6 +228,7 @@ impl Frames {
                 }
                 Item::Joint { .. } => Slot::Joint,
                 Item::Guide { .. } => Slot::Guide,
+                Item::Construction { .. } => Slot::Construction,
             });
         }
         let traces_at = slots.iter().map(Slot::len).sum();

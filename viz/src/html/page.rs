@@ -81,7 +81,8 @@ fn data(p: &Parts) -> Result<String, HtmlError> {
             Slot::Gear { .. } => ("gear", 1),
             Slot::Outline { .. } => ("outline", 1),
             Slot::Joint => ("joint", 1),
-            Slot::Guide => ("link", 2),
+            // Bars between two ends: the script moves their points as a link's.
+            Slot::Guide | Slot::Construction => ("link", 2),
         };
         let _ = write!(s, r#"{{"t":"{kind}","o":{o},"n":{n}}}"#);
         o += slot.len();

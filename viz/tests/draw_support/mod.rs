@@ -29,6 +29,20 @@ kinloop::mechanism! {
     }
 }
 
+kinloop::mechanism! {
+    /// A crank `r` at O = (0, 0) whose pin B is tied to the fixed point D = (d, 0) by the
+    /// vector `(x, y)`, both coordinates unknown: nothing keeps |BD| constant, so `(x, y)` is no
+    /// link but a construction vector. With sensitivities, to be a synthesis' candidate.
+    #[kinloop(sensitivities)]
+    pub struct Tied {
+        params r = 1.0, d = 3.0;
+        input phi;
+        unknowns x = 2, y = 0;
+        loop tie: r @ phi + (x, y) == (d, 0);
+        point b = r @ phi;
+    }
+}
+
 /// Closed form of the four-bar's joints `[B, C, P]` at crank angle `phi`, with C to the left
 /// of B->D (the declared assembly mode): C is where the circles (B, l) and (D, k) meet.
 pub fn four_bar_joints(m: &FourBar, phi: f64) -> [[f64; 2]; 3] {
