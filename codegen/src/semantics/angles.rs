@@ -50,6 +50,47 @@ pub(super) struct Verdicts {
     /// The unknowns that `eq`s set to expressions of angles (`y == 2 * psi`), found together at
     /// the first verdict that asks ([`Evidence::set_by_eqs`]).
     set_by_eqs: Option<HashSet<Leaf>>,
+    /// The names an equation sets to inverse trigonometric functions, and the trigonometric
+    /// arguments each name is in: found together at the first verdict that asks, so that a
+    /// verdict reads the equations and arguments of its own name (a name's own search through
+    /// all of them made the verdicts quadratic in the mechanism's size: a declaration of 600
+    /// loops took seconds to be refused for its number of unknowns).
+    index: Option<Index>,
+}
+
+/// What [`Evidence::by_itself`] reads of each name, found in one pass over the equations and
+/// the trigonometric arguments.
+struct Index {
+    /// The names an equation sets to inverse trigonometric functions (`q == atan2(y, x)`).
+    set_by_trig: HashSet<Leaf>,
+    /// The trigonometric arguments each name is in.
+    arguments_of: HashMap<Leaf, Vec<NodeId>>,
+}
+
+impl Index {
+    fn of(e: &Evidence) -> Self {
+        let g = e.g;
+        let mut set_by_trig = HashSet::new();
+        for &r in e.residuals {
+            // Only a name that is a whole term of the equation can be set by it.
+            let own = terms(g, r).into_iter().flatten().filter_map(|t| match g.op(t) {
+                Op::Leaf(l) => Some(l),
+                _ => None,
+            });
+            for leaf in own.collect::<HashSet<_>>() {
+                if !set_by_trig.contains(&leaf) && sets_to_angle(g, leaf, r, &mut |_| false) {
+                    set_by_trig.insert(leaf);
+                }
+            }
+        }
+        let mut arguments_of: HashMap<Leaf, Vec<NodeId>> = HashMap::new();
+        for &a in e.arguments {
+            for leaf in g.leaves_of(&[a]) {
+                arguments_of.entry(leaf).or_default().push(a);
+            }
+        }
+        Index { set_by_trig, arguments_of }
+    }
 }
 
 impl Evidence<'_> {
@@ -79,13 +120,14 @@ impl Evidence<'_> {
             return known;
         }
         let g = self.g;
+        let index = verdicts.index.get_or_insert_with(|| Index::of(self));
+        // The arguments `leaf` is not in classify it as free of it: its own are the same verdict.
+        let arguments = index.arguments_of.get(&leaf).map_or(&[][..], Vec::as_slice);
         let in_trig = match self.placed.contains(&leaf) {
-            true => multiples::in_whole_multiple(g, leaf, self.arguments),
-            false => multiples::in_whole_angle(g, leaf, self.arguments),
+            true => multiples::in_whole_multiple(g, leaf, arguments),
+            false => multiples::in_whole_angle(g, leaf, arguments),
         };
-        let known = self.degrees.contains(&leaf)
-            || in_trig
-            || self.residuals.iter().any(|&r| sets_to_angle(g, leaf, r, &mut |_| false));
+        let known = self.degrees.contains(&leaf) || in_trig || index.set_by_trig.contains(&leaf);
         verdicts.by_itself.insert(leaf, known);
         known
     }
