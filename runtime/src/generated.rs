@@ -480,26 +480,26 @@ macro_rules! __named_api {
                 omega: impl ::core::convert::Into<$inputs>,
                 eps: impl ::core::convert::Into<$inputs>,
             ) -> ::core::result::Result<$motion, $crate::Error> {
-                let __omega = ::core::convert::Into::<$inputs>::into(omega).into();
-                let __eps = ::core::convert::Into::<$inputs>::into(eps).into();
+                let __omega = ::core::convert::Into::into(::core::convert::Into::<$inputs>::into(omega));
+                let __eps = ::core::convert::Into::into(::core::convert::Into::<$inputs>::into(eps));
                 $crate::generated::motion::<$name, $n, $ni, $no>(&self.flat, __omega, __eps).map(|__m| $motion {
-                    qdot: __m.qdot.into(),
-                    qddot: __m.qddot.into(),
-                    out_dot: __m.out_dot.into(),
-                    out_ddot: __m.out_ddot.into(),
+                    qdot: ::core::convert::Into::into(__m.qdot),
+                    qddot: ::core::convert::Into::into(__m.qddot),
+                    out_dot: ::core::convert::Into::into(__m.out_dot),
+                    out_ddot: ::core::convert::Into::into(__m.out_ddot),
                 })
             }
         }
 
         impl ::core::convert::From<$crate::nalgebra::SVector<f64, $n>> for $unknowns<f64> {
             fn from(__v: $crate::nalgebra::SVector<f64, $n>) -> Self {
-                <[f64; $n]>::from(__v).into()
+                ::core::convert::Into::into(<[f64; $n] as ::core::convert::From<_>>::from(__v))
             }
         }
 
         impl ::core::convert::From<$unknowns<f64>> for $crate::nalgebra::SVector<f64, $n> {
             fn from(__v: $unknowns<f64>) -> Self {
-                <[f64; $n]>::from(__v).into()
+                ::core::convert::Into::into(<[f64; $n] as ::core::convert::From<_>>::from(__v))
             }
         }
     };
@@ -520,7 +520,7 @@ macro_rules! __columns {
      outputs $($o:ident $os:literal $oi:literal),*) => {
         #[doc = ::core::concat!("The columns of [`", ::core::stringify!($name), "`] as typed handles for the analysis helpers \
             (`kinloop::analysis::Sampled`): `", ::core::stringify!($name), "::COL.name`, `", ::core::stringify!($name), "::COL.point.x`.")]
-        #[derive(Clone, Copy, Debug)]
+        #[derive(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug)]
         #[allow(non_snake_case)]
         $vis struct $columns {
             $(#[doc = ::core::concat!("Input `", $is, "`.")] pub $i: $crate::analysis::Column<$name>,)*

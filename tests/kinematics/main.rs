@@ -27,3 +27,4 @@ mod quantity_kinds;
 mod reference_mpmath;
 mod sensitivities;
 mod units;
+mod without_the_prelude;

@@ -13,7 +13,7 @@ use super::kernel::{Mode, solver_body};
 use super::lints::kernel_lints;
 use super::names::Names;
 use super::runtime_path::runtime;
-use super::surface::{Field, analog_conversions, analog_types, named_struct};
+use super::surface::{Field, analog_conversions, analog_types, named_struct, std_derives};
 use super::type_names::Types;
 use crate::plan::Plan;
 use crate::semantics::model::Model;
@@ -45,11 +45,17 @@ pub fn types(vis: &Visibility, fields: &[Field], dims: &Dims, ni: usize, t: &Typ
     );
     let params_struct = named_struct(vis, params, &params_doc, fields, "Parameter");
     let (vp, ap) = analog_types(ni, inputs, quote!(#params<f64>));
-    let (conv_v, conv_a) = analog_conversions(ni, inputs, quote!([f64; #np]), Some(quote!(#params::from)));
+    let derives = std_derives(false);
+    let (conv_v, conv_a) = analog_conversions(
+        ni,
+        inputs,
+        quote!([f64; #np]),
+        Some(quote!(<#params<f64> as ::core::convert::From<_>>::from)),
+    );
     quote! {
         #params_struct
         #[doc = #sens_doc]
-        #[derive(Clone, Copy, Debug, PartialEq)]
+        #[derive(#derives)]
         #vis struct #sens {
             /// `d q / d p`.
             pub q: #unknowns<#params<f64>>,
@@ -69,12 +75,12 @@ pub fn types(vis: &Visibility, fields: &[Field], dims: &Dims, ni: usize, t: &Typ
         impl ::core::convert::From<#rt::Sens<#n, #ni_lit, #no, #np>> for #sens {
             fn from(__s: #rt::Sens<#n, #ni_lit, #no, #np>) -> Self {
                 #sens {
-                    q: #unknowns::from(__s.q.map(#params::from)),
-                    dq: #unknowns::from(__s.dq.map(#conv_v)),
-                    d2q: #unknowns::from(__s.d2q.map(#conv_a)),
-                    out: #outputs::from(__s.out.map(#params::from)),
-                    dout: #outputs::from(__s.dout.map(#conv_v)),
-                    d2out: #outputs::from(__s.d2out.map(#conv_a)),
+                    q: ::core::convert::From::from(__s.q.map(<#params<f64> as ::core::convert::From<_>>::from)),
+                    dq: ::core::convert::From::from(__s.dq.map(#conv_v)),
+                    d2q: ::core::convert::From::from(__s.d2q.map(#conv_a)),
+                    out: ::core::convert::From::from(__s.out.map(<#params<f64> as ::core::convert::From<_>>::from)),
+                    dout: ::core::convert::From::from(__s.dout.map(#conv_v)),
+                    d2out: ::core::convert::From::from(__s.d2out.map(#conv_a)),
                     flat: __s,
                 }
             }

@@ -165,7 +165,7 @@ fn params_struct(s: &Surface) -> TokenStream {
         }
         _ => quote!(),
     };
-    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!());
+    let derive = derives(std_derives(false), quote!());
     quote! {
         #(#docs)*
         #derive
@@ -186,7 +186,7 @@ pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], k
     let bind: Vec<Ident> = (0..fields.len()).map(|k| Ident::new(&format!("f{k}"), Span::call_site())).collect();
     // A struct without fields still mentions `T`.
     let marker = fields.is_empty().then(marker);
-    let derive = derives(quote!(Clone, Copy, Debug, Default, PartialEq), quote!());
+    let derive = derives(std_derives(true), quote!());
     let doc_line = format!(" {doc}");
     quote! {
         #[doc = #doc_line]
@@ -236,7 +236,7 @@ fn outputs_struct(s: &Surface, t: &Types) -> TokenStream {
         " Named outputs of [`{plain}`] (points and scalar outputs); with `T = f64` their values, in \
          [`{plain}State`] also their analogs."
     );
-    let derive = derives(quote!(Clone, Copy, Debug, Default, PartialEq), quote!());
+    let derive = derives(std_derives(true), quote!());
     quote! {
         #[doc = #doc]
         #derive
@@ -268,12 +268,16 @@ pub fn analog_conversions(
         (1, Some(e)) => (quote!(|__r| #e(__r[0])), quote!(|__r| #e(__r[0][0]))),
         (1, None) => (quote!(|__r| __r[0]), quote!(|__r| __r[0][0])),
         (_, Some(e)) => (
-            quote!(|__r: [#flat; #nil]| #inputs::from(__r.map(#e))),
-            quote!(|__r: [[#flat; #nil]; #nil]| #inputs::from(__r.map(|__s| #inputs::from(__s.map(#e))))),
+            quote!(|__r: [#flat; #nil]| <#inputs<_> as ::core::convert::From<_>>::from(__r.map(#e))),
+            quote!(|__r: [[#flat; #nil]; #nil]| {
+                <#inputs<_> as ::core::convert::From<_>>::from(__r.map(|__s| <#inputs<_> as ::core::convert::From<_>>::from(__s.map(#e))))
+            }),
         ),
         (_, None) => (
-            quote!(#inputs::<f64>::from),
-            quote!(|__r: [[#flat; #nil]; #nil]| #inputs::from(__r.map(#inputs::<f64>::from))),
+            quote!(<#inputs<f64> as ::core::convert::From<_>>::from),
+            quote!(|__r: [[#flat; #nil]; #nil]| {
+                <#inputs<_> as ::core::convert::From<_>>::from(__r.map(<#inputs<f64> as ::core::convert::From<_>>::from))
+            }),
         ),
     }
 }
@@ -306,7 +310,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
         "::kinloop::__gen::StateByName<{inputs}, {unknowns}, {unknowns}<{vs}>, {unknowns}<{as_}>, {outputs}, \
          {outputs}<{vs}>, {outputs}<{as_}>>"
     );
-    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!(, from = #by_name, into = #by_name));
+    let derive = derives(std_derives(false), quote!(, from = #by_name, into = #by_name));
     let arity = if ni == 1 { quote!(one) } else { quote!(many) };
     let by_name_conversions =
         quote!(#rt::state_by_name!(#state, #inputs, #unknowns, #outputs, #nl, #nil, #nol, #arity););
@@ -346,13 +350,13 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
             #[inline]
             fn from(__k: #rt::Kin<#nl, #nil, #nol>) -> Self {
                 #state {
-                    input: #inputs::from(__k.x),
-                    q: #unknowns::from(__k.q),
-                    dq: #unknowns::from(__k.dq.map(#conv_v)),
-                    d2q: #unknowns::from(__k.d2q.map(#conv_a)),
-                    out: #outputs::from(__k.out),
-                    dout: #outputs::from(__k.dout.map(#conv_v)),
-                    d2out: #outputs::from(__k.d2out.map(#conv_a)),
+                    input: ::core::convert::From::from(__k.x),
+                    q: ::core::convert::From::from(__k.q),
+                    dq: ::core::convert::From::from(__k.dq.map(#conv_v)),
+                    d2q: ::core::convert::From::from(__k.d2q.map(#conv_a)),
+                    out: ::core::convert::From::from(__k.out),
+                    dout: ::core::convert::From::from(__k.dout.map(#conv_v)),
+                    d2out: ::core::convert::From::from(__k.d2out.map(#conv_a)),
                     report: __k.report,
                     health: __k.health,
                     flat: __k,
@@ -369,7 +373,7 @@ fn motion_struct(s: &Surface, t: &Types) -> TokenStream {
     let (vis, plain) = (&s.vis, &t.plain);
     let Types { unknowns, outputs, motion, .. } = t;
     let motion_line = format!(" True velocities and accelerations of [`{plain}`] (time derivatives).");
-    let derive = derives(quote!(Clone, Copy, Debug, PartialEq), quote!());
+    let derive = derives(std_derives(false), quote!());
     quote! {
         #[doc = #motion_line]
         #derive
@@ -384,6 +388,14 @@ fn motion_struct(s: &Surface, t: &Types) -> TokenStream {
             pub out_ddot: #outputs,
         }
     }
+}
+
+/// The standard traits a generated struct derives, by their paths in `core`: a bare `Clone` or
+/// `Default` is the prelude's, which a module with `#![no_implicit_prelude]` does not have.
+/// `Default` is derived by the named structs of values (`with_default`), not by the states.
+pub fn std_derives(with_default: bool) -> TokenStream {
+    let default = with_default.then(|| quote!(::core::default::Default,));
+    quote!(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, #default ::core::cmp::PartialEq)
 }
 
 /// The derive attributes of a generated struct: the standard traits `std`, and `Serialize` and

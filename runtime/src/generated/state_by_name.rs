@@ -63,8 +63,9 @@ macro_rules! __state_by_name {
     };
     ($state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal, many) => {
         $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no, $inputs<f64>,
-            $inputs<$inputs<f64>>, <[f64; $ni]>::from,
-            |__a: $inputs<$inputs<f64>>| <[$inputs<f64>; $ni]>::from(__a).map(<[f64; $ni]>::from));
+            $inputs<$inputs<f64>>, <[f64; $ni] as ::core::convert::From<_>>::from,
+            |__a: $inputs<$inputs<f64>>| <[$inputs<f64>; $ni] as ::core::convert::From<_>>::from(__a)
+                .map(<[f64; $ni] as ::core::convert::From<_>>::from));
     };
     (@impl $state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal,
         $v:ty, $a:ty, $back_v:expr, $back_a:expr) => {
@@ -84,14 +85,14 @@ macro_rules! __state_by_name {
             fn from(
                 __s: $crate::generated::StateByName<$inputs, $unknowns, $unknowns<$v>, $unknowns<$a>, $outputs, $outputs<$v>, $outputs<$a>>,
             ) -> Self {
-                $state::from($crate::Kin::<$n, $ni, $no> {
-                    x: __s.input.into(),
-                    q: __s.q.into(),
-                    dq: <[$v; $n]>::from(__s.dq).map($back_v),
-                    d2q: <[$a; $n]>::from(__s.d2q).map($back_a),
-                    out: __s.out.into(),
-                    dout: <[$v; $no]>::from(__s.dout).map($back_v),
-                    d2out: <[$a; $no]>::from(__s.d2out).map($back_a),
+                <$state as ::core::convert::From<_>>::from($crate::Kin::<$n, $ni, $no> {
+                    x: ::core::convert::Into::into(__s.input),
+                    q: ::core::convert::Into::into(__s.q),
+                    dq: <[$v; $n] as ::core::convert::From<_>>::from(__s.dq).map($back_v),
+                    d2q: <[$a; $n] as ::core::convert::From<_>>::from(__s.d2q).map($back_a),
+                    out: ::core::convert::Into::into(__s.out),
+                    dout: <[$v; $no] as ::core::convert::From<_>>::from(__s.dout).map($back_v),
+                    d2out: <[$a; $no] as ::core::convert::From<_>>::from(__s.d2out).map($back_a),
                     report: __s.report,
                     health: __s.health,
                 })

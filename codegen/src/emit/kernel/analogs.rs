@@ -83,7 +83,7 @@ impl Kernel<'_> {
             #factor
             if #checked !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                 let __r = #rt::first_bad_row(__j).or(#rt::first_bad_row(#rv));
-                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __r));
+                return ::core::result::Result::Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __r));
             }
         }
     }
@@ -110,7 +110,7 @@ impl Kernel<'_> {
             __j.factor_cols_into(&mut #lu, &[#(#scale),*]);
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                 let __r = __j.first_bad_row().or(#rt::first_bad_row(#rv));
-                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __r));
+                return ::core::result::Result::Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __r));
             }
         }
     }

@@ -22,8 +22,8 @@ pub fn closed_config_check(plan: &Plan) -> TokenStream {
         Some(b) => {
             let b = lit(b);
             quote! {
-                if let Some(field) = __cfg.invalid_field() {
-                    return Err(#rt::config_failure(self, #b, field, __x, __guess));
+                if let ::core::option::Option::Some(field) = __cfg.invalid_field() {
+                    return ::core::result::Result::Err(#rt::config_failure(self, #b, field, __x, __guess));
                 }
             }
         }

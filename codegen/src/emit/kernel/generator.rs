@@ -42,6 +42,10 @@ impl Kernel<'_> {
     }
 
     pub(super) fn guess_arg(&self) -> TokenStream {
-        if self.mode == Mode::At { quote!(None) } else { quote!(Some(__guess)) }
+        if self.mode == Mode::At {
+            quote!(::core::option::Option::None)
+        } else {
+            quote!(::core::option::Option::Some(__guess))
+        }
     }
 }

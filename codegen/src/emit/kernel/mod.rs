@@ -88,7 +88,7 @@ fn body(plan: &Plan, names: &Names, mode: Mode, sens: bool, deferred: bool) -> T
         }
     }
     let rt = &k.rt;
-    body.extend(quote!(let mut __health = #rt::Health::default();));
+    body.extend(quote!(let mut __health = <#rt::Health as ::core::default::Default>::default();));
     for b in 0..plan.blocks.len() {
         body.extend(k.velocity_block(b));
     }

@@ -54,7 +54,7 @@ impl Kernel<'_> {
         quote! {
             let #lu = #factor;
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                return Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(#aug)));
+                return ::core::result::Result::Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(#aug)));
             }
             let [#(#qs),*] = #lu.solve([#(#rhs),*]);
         }
@@ -149,7 +149,8 @@ impl Kernel<'_> {
         };
         // Deferred, an earlier block may have failed unchecked (its outputs NaN): the checked
         // kernel tells which failure it is.
-        let failure = quote!(return Err(#rt::block_failure(self, #bl, *__e, __x, __guess, __cfg)));
+        let failure =
+            quote!(return ::core::result::Result::Err(#rt::block_failure(self, #bl, *__e, __x, __guess, __cfg)));
         let fail = if self.deferred {
             quote!({
                 if __CHECKED {
@@ -214,8 +215,8 @@ impl Kernel<'_> {
             #slot
             let #r = #newton(__z0, &mut #at, __cfg, #ev, #mags #lu_arg);
             let #s = match &#r {
-                Ok(__s) => __s,
-                Err(__e) => #fail,
+                ::core::result::Result::Ok(__s) => __s,
+                ::core::result::Result::Err(__e) => #fail,
             };
             __report.absorb(#s);
             let [#(#qs),*] = #s.z;
