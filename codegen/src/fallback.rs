@@ -176,16 +176,26 @@ fn rejected_sensitivities(s: &Surface, t: &Types) -> TokenStream {
             }
         }
         impl #rt::Sensitivities<#n, #ni, #no, #np> for #name {
-            fn params_flat(&self) -> [f64; #np] {
+            fn params_flat(&self) -> [::core::primitive::f64; #np] {
                 #rt::rejected()
             }
-            fn with_params_flat(&self, _: [f64; #np]) -> Self {
+            fn with_params_flat(&self, _: [::core::primitive::f64; #np]) -> Self {
                 #rt::rejected()
             }
-            fn sensitivities_flat(&self, _: &[f64; #ni], _: &[f64; #n], _: &#rt::NewtonConfig) -> #flat {
+            fn sensitivities_flat(
+                &self,
+                _: &[::core::primitive::f64; #ni],
+                _: &[::core::primitive::f64; #n],
+                _: &#rt::NewtonConfig,
+            ) -> #flat {
                 #rt::rejected()
             }
-            fn sensitivities_at_flat(&self, _: &[f64; #ni], _: &[f64; #n], _: &#rt::NewtonConfig) -> #flat {
+            fn sensitivities_at_flat(
+                &self,
+                _: &[::core::primitive::f64; #ni],
+                _: &[::core::primitive::f64; #n],
+                _: &#rt::NewtonConfig,
+            ) -> #flat {
                 #rt::rejected()
             }
         }

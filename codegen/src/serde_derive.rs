@@ -99,8 +99,19 @@ impl<'a> Shape<'a> {
             (Direction::Deserialize, _, Some(from)) => self.deserialize_from(from),
             _ => self.through_twin(dir),
         };
-        // In an anonymous constant: the twin's name cannot clash with the user's.
-        quote!(const _: () = { #body };)
+        // In an anonymous constant: the twin's name cannot clash with the user's. serde's derive
+        // writes primitive types bare (`&str`, `usize`), which an item of the user's module
+        // named like one would shadow (`type str = [u8];`): imported here, they are the
+        // primitives again, since a block's own names come before its module's.
+        quote! {
+            const _: () = {
+                #[allow(unused_imports)]
+                use ::core::primitive::{
+                    bool, char, f32, f64, i8, i16, i32, i64, i128, isize, str, u8, u16, u32, u64, u128, usize,
+                };
+                #body
+            };
+        }
     }
 
     /// The impl's generic parameters (without defaults), `'de` first for `Deserialize`.

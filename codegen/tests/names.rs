@@ -24,12 +24,12 @@ const COUPLER_FOUR_BAR: &str = "
 #[test]
 fn a_term_several_quantities_share_is_named_by_its_form() {
     let code = expanded(COUPLER_FOUR_BAR);
-    assert!(code.contains("let a_cos_phi: f64 = self.a * cos_phi;"), "{code}");
-    assert!(code.contains("let out_p_x: f64 = a_cos_phi + "), "{code}");
+    assert!(code.contains("let a_cos_phi: ::core::primitive::f64 = self.a * cos_phi;"), "{code}");
+    assert!(code.contains("let out_p_x: ::core::primitive::f64 = a_cos_phi + "), "{code}");
     assert!(code.contains("__jac.fx[1][0] = a_cos_phi;"), "{code}");
     assert!(!code.contains("fx_abcd_y_phi"), "{code}");
     // A derivative nothing else is computed from keeps its role's name.
-    assert!(code.contains("let j_abcd_x_beta: f64 = -b_sin_beta;"), "{code}");
+    assert!(code.contains("let j_abcd_x_beta: ::core::primitive::f64 = -b_sin_beta;"), "{code}");
 }
 
 /// The analogs of a declared output are named after it, by input.
@@ -37,7 +37,7 @@ fn a_term_several_quantities_share_is_named_by_its_form() {
 fn the_analogs_of_an_output_are_named_after_it() {
     let code = expanded(COUPLER_FOUR_BAR);
     for name in ["dout_p_x_phi", "dout_p_y_phi", "d2out_p_x_phi_phi", "d2out_p_y_phi_phi"] {
-        assert!(code.contains(&format!("let {name}: f64 = ")), "{name}: {code}");
+        assert!(code.contains(&format!("let {name}: ::core::primitive::f64 = ")), "{name}: {code}");
     }
 }
 
@@ -49,8 +49,8 @@ fn a_form_spelled_like_a_leaf_is_not_a_name() {
         "pub struct S { params x = 1, phi = 2, l = 3; input th; unknowns s = 1;
             eq e: s == x * phi + th * l; }",
     );
-    assert!(code.contains(": f64 = self.x * self.phi;") && !code.contains("let x_phi"), "{code}");
-    assert!(code.contains("let th_l: f64 = x_th * self.l;"), "{code}");
+    assert!(code.contains(": ::core::primitive::f64 = self.x * self.phi;") && !code.contains("let x_phi"), "{code}");
+    assert!(code.contains("let th_l: ::core::primitive::f64 = x_th * self.l;"), "{code}");
 }
 
 /// A `let` names the temporary that holds its value (a vector's components `_x`, `_y`), after
@@ -67,8 +67,8 @@ fn a_let_names_the_temporary_it_produced() {
             loop abcd: crank_pin + b @ beta == (d, 0) + c @ gamma;
             output spread = reach + t2; }",
     );
-    assert!(code.contains("let let_crank_pin_x: f64 = "), "{code}");
-    assert!(code.contains("let let_crank_pin_y: f64 = "), "{code}");
-    assert!(code.contains("let let_reach: f64 = "), "{code}");
-    assert!(code.contains("let let_t2: f64 = let_reach * let_reach;"), "{code}");
+    assert!(code.contains("let let_crank_pin_x: ::core::primitive::f64 = "), "{code}");
+    assert!(code.contains("let let_crank_pin_y: ::core::primitive::f64 = "), "{code}");
+    assert!(code.contains("let let_reach: ::core::primitive::f64 = "), "{code}");
+    assert!(code.contains("let let_t2: ::core::primitive::f64 = let_reach * let_reach;"), "{code}");
 }

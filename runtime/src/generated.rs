@@ -312,7 +312,11 @@ macro_rules! __named_api {
             }
 
             /// Residuals of the scalar equations (named by `EQUATIONS`) at a position.
-            pub fn residual(&self, input: impl ::core::convert::Into<$inputs>, unknowns: &$unknowns) -> [f64; $n] {
+            pub fn residual(
+                &self,
+                input: impl ::core::convert::Into<$inputs>,
+                unknowns: &$unknowns,
+            ) -> [::core::primitive::f64; $n] {
                 <Self as $crate::Named<$n, $ni, $no>>::residual(self, input, unknowns)
             }
 
@@ -386,7 +390,7 @@ macro_rules! __named_api {
                 &self,
                 from: impl ::core::convert::Into<$inputs>,
                 to: impl ::core::convert::Into<$inputs>,
-                samples: usize,
+                samples: ::core::primitive::usize,
                 guess: &$unknowns,
             ) -> ::core::result::Result<$crate::Sweep<'_, Self, $state, $n, $ni, $no>, $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::sweep(self, from, to, samples, guess)
@@ -398,7 +402,7 @@ macro_rules! __named_api {
                 &self,
                 from: impl ::core::convert::Into<$inputs>,
                 to: impl ::core::convert::Into<$inputs>,
-                samples: usize,
+                samples: ::core::primitive::usize,
                 guess: &$unknowns,
             ) -> ::core::result::Result<$crate::analysis::Sampled<'_, Self, $n, $no, $ni>, $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::sampled(self, from, to, samples, guess)
@@ -432,7 +436,7 @@ macro_rules! __named_api {
                 at: impl ::core::convert::Into<$inputs>,
                 delta: impl ::core::convert::Into<$inputs>,
                 guess: &$unknowns,
-                samples: usize,
+                samples: ::core::primitive::usize,
             ) -> ::core::result::Result<$crate::Reach<$inputs>, $crate::Error> {
                 <Self as $crate::Named<$n, $ni, $no>>::reachable(self, at, delta, guess, samples)
             }
@@ -491,15 +495,19 @@ macro_rules! __named_api {
             }
         }
 
-        impl ::core::convert::From<$crate::nalgebra::SVector<f64, $n>> for $unknowns<f64> {
-            fn from(__v: $crate::nalgebra::SVector<f64, $n>) -> Self {
-                ::core::convert::Into::into(<[f64; $n] as ::core::convert::From<_>>::from(__v))
+        impl ::core::convert::From<$crate::nalgebra::SVector<::core::primitive::f64, $n>>
+            for $unknowns<::core::primitive::f64>
+        {
+            fn from(__v: $crate::nalgebra::SVector<::core::primitive::f64, $n>) -> Self {
+                ::core::convert::Into::into(<[::core::primitive::f64; $n] as ::core::convert::From<_>>::from(__v))
             }
         }
 
-        impl ::core::convert::From<$unknowns<f64>> for $crate::nalgebra::SVector<f64, $n> {
-            fn from(__v: $unknowns<f64>) -> Self {
-                ::core::convert::Into::into(<[f64; $n] as ::core::convert::From<_>>::from(__v))
+        impl ::core::convert::From<$unknowns<::core::primitive::f64>>
+            for $crate::nalgebra::SVector<::core::primitive::f64, $n>
+        {
+            fn from(__v: $unknowns<::core::primitive::f64>) -> Self {
+                ::core::convert::Into::into(<[::core::primitive::f64; $n] as ::core::convert::From<_>>::from(__v))
             }
         }
     };
@@ -556,7 +564,7 @@ macro_rules! __kinds {
     ($ni:literal [$($i:ident),*], $n:literal [$($u:ident),*] [$($c:literal),*], $no:literal [$($o:ident),*]) => {
         const INPUT_KINDS: [$crate::QuantityKind; $ni] = [$($crate::QuantityKind::$i),*];
         const UNKNOWN_KINDS: [$crate::QuantityKind; $n] = [$($crate::QuantityKind::$u),*];
-        const CLOSED_FORM_ANGLES: [bool; $n] = [$($c),*];
+        const CLOSED_FORM_ANGLES: [::core::primitive::bool; $n] = [$($c),*];
         const OUTPUT_KINDS: [$crate::QuantityKind; $no] = [$($crate::QuantityKind::$o),*];
     };
 }
@@ -571,14 +579,14 @@ pub use crate::__kinds as kinds;
 #[macro_export]
 macro_rules! __mechanism_consts {
     ($name:ident, $n:literal, $ni:literal, $no:literal) => {
-        const NAME: &'static str = $name::NAME;
-        const PARAMS: &'static [&'static str] = &$name::PARAMS;
-        const INPUTS: [&'static str; $ni] = $name::INPUTS;
-        const UNKNOWNS: [&'static str; $n] = $name::UNKNOWNS;
-        const EQUATIONS: [&'static str; $n] = $name::EQUATIONS;
-        const OUTPUTS: [&'static str; $no] = $name::OUTPUTS;
+        const NAME: &'static ::core::primitive::str = $name::NAME;
+        const PARAMS: &'static [&'static ::core::primitive::str] = &$name::PARAMS;
+        const INPUTS: [&'static ::core::primitive::str; $ni] = $name::INPUTS;
+        const UNKNOWNS: [&'static ::core::primitive::str; $n] = $name::UNKNOWNS;
+        const EQUATIONS: [&'static ::core::primitive::str; $n] = $name::EQUATIONS;
+        const OUTPUTS: [&'static ::core::primitive::str; $no] = $name::OUTPUTS;
         const BLOCKS: &'static [$crate::BlockInfo] = $name::BLOCKS;
-        fn param_values(&self) -> ::std::vec::Vec<f64> {
+        fn param_values(&self) -> ::std::vec::Vec<::core::primitive::f64> {
             $name::param_values(self).to_vec()
         }
     };
@@ -587,7 +595,10 @@ macro_rules! __mechanism_consts {
     // never per step.
     ($name:ident, $n:literal, $ni:literal, $no:literal; $($k:literal $p:ident),+) => {
         $crate::__mechanism_consts!($name, $n, $ni, $no);
-        fn angle_param_beyond(&self, bound: f64) -> ::core::option::Option<usize> {
+        fn angle_param_beyond(
+            &self,
+            bound: ::core::primitive::f64,
+        ) -> ::core::option::Option<::core::primitive::usize> {
             $(if self.$p.abs() > bound && self.$p.is_finite() {
                 return ::core::option::Option::Some($k);
             })+
@@ -659,13 +670,13 @@ pub use crate::__array_conversions as array_conversions;
 macro_rules! __from_param_values {
     (0;) => {
         /// Builds the mechanism from parameter values in declaration order.
-        pub fn from_param_values(_: [f64; 0]) -> Self {
+        pub fn from_param_values(_: [::core::primitive::f64; 0]) -> Self {
             Self {}
         }
     };
     ($n:literal; $($f:ident $i:tt),+) => {
         /// Builds the mechanism from parameter values in declaration order.
-        pub fn from_param_values(__values: [f64; $n]) -> Self {
+        pub fn from_param_values(__values: [::core::primitive::f64; $n]) -> Self {
             Self { $($f: __values[$i]),+ }
         }
     };

@@ -26,5 +26,6 @@ mod prop_linkages;
 mod quantity_kinds;
 mod reference_mpmath;
 mod sensitivities;
+mod shadowed_primitives;
 mod units;
 mod without_the_prelude;

@@ -47,25 +47,25 @@ fn constants(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     quote! {
         impl #name {
             /// The mechanism's type name.
-            pub const NAME: &'static str = #plain;
+            pub const NAME: &'static ::core::primitive::str = #plain;
             /// Parameter names, in declaration order.
-            pub const PARAMS: [&'static str; #np] = [#(#pstrs),*];
+            pub const PARAMS: [&'static ::core::primitive::str; #np] = [#(#pstrs),*];
             /// Input names.
-            pub const INPUTS: [&'static str; #ni] = [#(#istrs),*];
+            pub const INPUTS: [&'static ::core::primitive::str; #ni] = [#(#istrs),*];
             /// Unknown names.
-            pub const UNKNOWNS: [&'static str; #n] = [#(#ustrs),*];
+            pub const UNKNOWNS: [&'static ::core::primitive::str; #n] = [#(#ustrs),*];
             /// Scalar equation names: `loop.x` and `loop.y` for each loop, the `eq` names.
-            pub const EQUATIONS: [&'static str; #n] = [#(#estrs),*];
+            pub const EQUATIONS: [&'static ::core::primitive::str; #n] = [#(#estrs),*];
             /// Output columns: `point.x`, `point.y` for each point, then scalar outputs.
-            pub const OUTPUTS: [&'static str; #no] = [#(#ostrs),*];
+            pub const OUTPUTS: [&'static ::core::primitive::str; #no] = [#(#ostrs),*];
             /// The block-triangular decomposition of the equations, in solve order.
             pub const BLOCKS: &'static [#rt::BlockInfo] = &[#(#blocks),*];
             /// The decomposition in words: counts and mobility, then one line per block in
             /// solve order (closed form, Newton or linear, unknowns `<-` equations).
-            pub const DECOMPOSITION: &'static str = #decomposition;
+            pub const DECOMPOSITION: &'static ::core::primitive::str = #decomposition;
 
             /// Parameter values in declaration order.
-            pub fn param_values(&self) -> [f64; #np] {
+            pub fn param_values(&self) -> [::core::primitive::f64; #np] {
                 [#(self.#pnames),*]
             }
 
@@ -112,7 +112,11 @@ fn kind_constants(model: &Model, plan: &Plan) -> (TokenStream, TokenStream) {
 fn followers_constant(plan: &Plan) -> TokenStream {
     let n = super::literals::lit(plan.n);
     let follows = crate::plan::followers::followers(&plan.graph, &plan.blocks, plan.n);
-    if follows.iter().any(|&f| f) { quote!(const FOLLOWERS: [bool; #n] = [#(#follows),*];) } else { TokenStream::new() }
+    if follows.iter().any(|&f| f) {
+        quote!(const FOLLOWERS: [::core::primitive::bool; #n] = [#(#follows),*];)
+    } else {
+        TokenStream::new()
+    }
 }
 
 /// `PIECEWISE` of the `Mechanism` implementation (see [`crate::plan::piecewise`]), where the
@@ -120,7 +124,7 @@ fn followers_constant(plan: &Plan) -> TokenStream {
 fn piecewise_constant(plan: &Plan) -> TokenStream {
     if crate::plan::piecewise(plan) {
         quote!(
-            const PIECEWISE: bool = true;
+            const PIECEWISE: ::core::primitive::bool = true;
         )
     } else {
         TokenStream::new()
@@ -159,9 +163,9 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let piecewise = piecewise_constant(plan);
     let drawing = super::drawing::constant(model);
     let (x, q, g, cfg) = (
-        quote!(__x: &[f64; #ni]),
-        quote!(__q: &[f64; #n]),
-        quote!(__guess: &[f64; #n]),
+        quote!(__x: &[::core::primitive::f64; #ni]),
+        quote!(__q: &[::core::primitive::f64; #n]),
+        quote!(__guess: &[::core::primitive::f64; #n]),
         quote!(__cfg: &#rt::NewtonConfig),
     );
     let kin = quote!(#rt::KinResult<#n, #ni, #no>);
@@ -202,7 +206,11 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         };
         quote! {
             #[inline(always)]
-            fn kinematics_step_sink<T: #rt::InputTrig, S: #rt::KinSink<#n, #ni, #no>, const __CHECKED: bool>(
+            fn kinematics_step_sink<
+                T: #rt::InputTrig,
+                S: #rt::KinSink<#n, #ni, #no>,
+                const __CHECKED: ::core::primitive::bool,
+            >(
                 &self, #x, #g, #cfg, __trig: &mut T, __sink: S,
             ) -> ::core::result::Result<S::Out, #rt::Error> { #fused }
             #flat
@@ -224,8 +232,8 @@ fn mechanism_impl(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
             #followers
             #piecewise
             #drawing
-            fn guess_flat(&self, #x) -> [f64; #n] { #guess }
-            fn outputs_flat(&self, #x, #q) -> [f64; #no] { #outputs_body }
+            fn guess_flat(&self, #x) -> [::core::primitive::f64; #n] { #guess }
+            fn outputs_flat(&self, #x, #q) -> [::core::primitive::f64; #no] { #outputs_body }
             fn jacobian_flat(&self, #x, #q) -> #rt::Jac<#n, #ni> { #jacobian }
             #[inline]
             fn position_flat(&self, #x, #g, #cfg) -> #position_ret { #position }

@@ -137,7 +137,7 @@ fn bind(out: &mut TokenStream, name: &str, v: V) -> V {
         V::C(_) => v,
         V::E(t) => {
             let id = format_ident!("{}", name);
-            out.extend(quote!(let #id: f64 = #t;));
+            out.extend(quote!(let #id: ::core::primitive::f64 = #t;));
             V::E(quote!(#id))
         }
     }
@@ -271,7 +271,7 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: O
         let call = match (links, cx.deferred) {
             (Some([e0, e1, l0, l1]), deferred) => {
                 let f = if deferred { quote!(__mode.dyad_of) } else { quote!(#rt::dyad_of) };
-                out.extend(quote!(let __dyad: [f64; 6] = [#a, #b, #e0, #e1, #l0, #l1];));
+                out.extend(quote!(let __dyad: [::core::primitive::f64; 6] = [#a, #b, #e0, #e1, #l0, #l1];));
                 quote!(#f(__dyad, #c, #flip, __cfg))
             }
             (None, deferred) => match (&cx.terms, deferred) {
@@ -295,7 +295,10 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: O
             let d2 = quote!(#rt::dyad_d2(#d2, #r2, [#e0, #e1, #l0, #l1]));
             let f =
                 if cx.deferred { quote!(__mode.folded_dyad_root_offset) } else { quote!(#rt::folded_dyad_root_offset) };
-            quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, [#e0, #e1, #l0, #l1], #flip, __cfg).map_err(__fail)?;)
+            quote! {
+                let __d: ::core::primitive::f64 =
+                    #f(#d2, #r2, #a, #b, #c, [#e0, #e1, #l0, #l1], #flip, __cfg).map_err(__fail)?;
+            }
         }
         None => {
             let f = match (&cx.terms, cx.deferred) {
@@ -305,7 +308,7 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: O
                 (None, false) => quote!(#rt::folded_root_offset),
             };
             let terms = cx.terms.as_ref().map(|t| quote!(, #t));
-            quote!(let __d: f64 = #f(#d2, #r2, #a, #b, #c, #flip, __cfg #terms).map_err(__fail)?;)
+            quote!(let __d: ::core::primitive::f64 = #f(#d2, #r2, #a, #b, #c, #flip, __cfg #terms).map_err(__fail)?;)
         }
     };
     let d = local("__d");
@@ -319,21 +322,21 @@ fn root(out: &mut TokenStream, a: &V, b: &V, c: &V, flip: &TokenStream, links: O
     if zero(a) {
         let ib = bind(out, "__ib", V::E(quote!((1.0 / #b))));
         let sq = mul(c, &ib);
-        out.extend(quote!(let __sq: f64 = #sq; #root_offset));
+        out.extend(quote!(let __sq: ::core::primitive::f64 = #sq; #root_offset));
         let cq = neg(&mul(&d, &ib));
-        out.extend(quote!(let __cq: f64 = #cq;));
+        out.extend(quote!(let __cq: ::core::primitive::f64 = #cq;));
     } else if zero(b) {
         let ia = bind(out, "__ia", V::E(quote!((1.0 / #a))));
         let cq = mul(c, &ia);
-        out.extend(quote!(let __cq: f64 = #cq; #root_offset));
+        out.extend(quote!(let __cq: ::core::primitive::f64 = #cq; #root_offset));
         let sq = mul(&d, &ia);
-        out.extend(quote!(let __sq: f64 = #sq;));
+        out.extend(quote!(let __sq: ::core::primitive::f64 = #sq;));
     } else {
         out.extend(root_offset);
         let inv = bind(out, "__inv", V::E(quote!((1.0 / #r2))));
         let cq = mul(&sub(&mul(a, c), &mul(b, &d)), &inv);
         let sq = mul(&add(&mul(b, c), &mul(a, &d)), &inv);
-        out.extend(quote!(let __cq: f64 = #cq; let __sq: f64 = #sq;));
+        out.extend(quote!(let __cq: ::core::primitive::f64 = #cq; let __sq: ::core::primitive::f64 = #sq;));
     }
 }
 
@@ -398,9 +401,9 @@ fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
         // its sign), so `asin` of the sine on the guess's side of the vertical, moved to its
         // turn by the reduction the sign rule made (the rule of `flip_at_guess`).
         let mut out = quote! {
-            let __r: f64 = #rt::reduce_turn(#g);
-            let __right: bool = __r.abs() < ::core::f64::consts::FRAC_PI_2;
-            let __flip: bool = (#b > 0.0) == __right;
+            let __r: ::core::primitive::f64 = #rt::reduce_turn(#g);
+            let __right: ::core::primitive::bool = __r.abs() < ::core::f64::consts::FRAC_PI_2;
+            let __flip: ::core::primitive::bool = (#b > 0.0) == __right;
         };
         root(&mut out, a, b, c, &quote!(__flip), None, cx);
         // A sweep's cache advances it from its anchor, as every other closed-form angle: on the
@@ -409,11 +412,11 @@ fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
         // needs only the sine, and took about as long in time.
         let exact = quote!(#rt::asin_near(__sq, __right, __r, #g));
         let q = angle_of(u, quote!(__sq), quote!(__cq), exact, cx);
-        out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
+        out.extend(quote!(let __out: [::core::primitive::f64; 3] = [#q, __cq, __sq];));
         return out;
     }
     let flip = flip_at_guess(a, b, g, cx);
-    let mut out = quote!(let __flip: bool = #flip;);
+    let mut out = quote!(let __flip: ::core::primitive::bool = #flip;);
     root(&mut out, a, b, c, &quote!(__flip), None, cx);
     // `a cos q = c`: `acos` of the cosine on the sine's side (cheaper than `atan2`).
     let q = if zero(b) {
@@ -422,7 +425,7 @@ fn angle_equation(a: &V, b: &V, c: &V, u: usize, cx: &Context) -> TokenStream {
     } else {
         unwrapped(u, quote!(__sq), quote!(__cq), cx)
     };
-    out.extend(quote!(let __out: [f64; 3] = [#q, __cq, __sq];));
+    out.extend(quote!(let __out: [::core::primitive::f64; 3] = [#q, __cq, __sq];));
     out
 }
 
@@ -464,7 +467,7 @@ fn dyad(
         flip_at_guess(&ca, &cb, &sigma, cx)
     };
     let mut out = quote! {
-        let __flip: bool = #flip;
+        let __flip: ::core::primitive::bool = #flip;
     };
     let ca = bind(&mut out, "__a", dot(&[(&a[0][0], &e[0]), (&a[1][0], &e[1])]));
     let cb = bind(&mut out, "__b", dot(&[(&a[0][1], &e[0]), (&a[1][1], &e[1])]));
@@ -482,9 +485,9 @@ fn dyad(
     let q0 = unwrapped(angles[0], quote!(__sq), quote!(__cq), cx);
     let q1 = unwrapped(angles[1], quote!(__s1), quote!(__c1), cx);
     out.extend(quote! {
-        let __c1: f64 = #c1;
-        let __s1: f64 = #s1;
-        let __out: [f64; 6] = [#q0, #q1, __cq, __sq, __c1, __s1];
+        let __c1: ::core::primitive::f64 = #c1;
+        let __s1: ::core::primitive::f64 = #s1;
+        let __out: [::core::primitive::f64; 6] = [#q0, #q1, __cq, __sq, __c1, __s1];
     });
     out
 }
@@ -508,14 +511,14 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let q0 = if cx.trig {
         direction
     } else {
-        out.extend(quote!(let __q0: f64 = #direction;));
+        out.extend(quote!(let __q0: ::core::primitive::f64 = #direction;));
         quote!(__q0)
     };
     let f = if cx.deferred { quote!(__mode.polar_norm) } else { quote!(#rt::polar_norm) };
-    out.extend(quote!(let __ir: f64 = #f(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
+    out.extend(quote!(let __ir: ::core::primitive::f64 = #f(#r2, #e0, #e1, __cfg).map_err(__fail)?;));
     let ir = local("__ir");
     let (c0, s0) = (mul(&b, &ir), neg(&mul(&a, &ir)));
-    out.extend(quote!(let (mut __cq, mut __sq): (f64, f64) = (#c0, #s0);));
+    out.extend(quote!(let (mut __cq, mut __sq): (::core::primitive::f64, ::core::primitive::f64) = (#c0, #s0);));
     let (cq, sq) = (local("__cq"), local("__sq"));
     let w0 = bind(&mut out, "__w0", dot(&[(&w[0][0], &cq), (&w[0][1], &sq)]));
     let w1 = bind(&mut out, "__w1", dot(&[(&w[1][0], &cq), (&w[1][1], &sq)]));
@@ -535,14 +538,14 @@ fn polar(w: &[[NodeId; 2]; 2], e: &[NodeId; 2], u: usize, gs: &TokenStream, cx: 
     let exact = on_turn(quote!(#rt::half_turn_if(#q0, __flip)), &guess_of(u), cx);
     let q = angle_of(u, quote!(__sq), quote!(__cq), exact, cx);
     out.extend(quote! {
-        let mut __s: f64 = #s;
-        let __flip: bool = __s * #gs < 0.0;
+        let mut __s: ::core::primitive::f64 = #s;
+        let __flip: ::core::primitive::bool = __s * #gs < 0.0;
         if __flip {
             __s = -__s;
             __cq = -__cq;
             __sq = -__sq;
         }
-        let __out: [f64; 4] = [#q, __s, __cq, __sq];
+        let __out: [::core::primitive::f64; 4] = [#q, __s, __cq, __sq];
     });
     out
 }
@@ -558,7 +561,7 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], u: usize
     let b = bind(&mut out, "__b", sub(&mul(&d[1], &m[0][1]), &mul(&d[0], &m[1][1])));
     let c = bind(&mut out, "__c", sub(&mul(&d[0], &e[1]), &mul(&d[1], &e[0])));
     let flip = flip_at_guess(&a, &b, &guess_of(u), cx);
-    out.extend(quote!(let __flip: bool = #flip;));
+    out.extend(quote!(let __flip: ::core::primitive::bool = #flip;));
     root(&mut out, &a, &b, &c, &quote!(__flip), None, cx);
     let (cq, sq) = (local("__cq"), local("__sq"));
     let r0 = add(&dot(&[(&m[0][0], &cq), (&m[0][1], &sq)]), &e[0]);
@@ -567,8 +570,8 @@ fn angle_slider(m: &[[NodeId; 2]; 2], d: &[NodeId; 2], e: &[NodeId; 2], u: usize
     let den = dot(&[(&d[0], &d[0]), (&d[1], &d[1])]);
     let q = unwrapped(u, quote!(__sq), quote!(__cq), cx);
     out.extend(quote! {
-        let __s: f64 = -#num / #den;
-        let __out: [f64; 4] = [#q, __s, __cq, __sq];
+        let __s: ::core::primitive::f64 = -#num / #den;
+        let __out: [::core::primitive::f64; 4] = [#q, __s, __cq, __sq];
     });
     out
 }

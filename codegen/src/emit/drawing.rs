@@ -22,7 +22,7 @@ use std::fmt::Write;
 /// `const DRAWING: &'static str = "...";` of the `Mechanism` implementation.
 pub fn constant(model: &Model) -> TokenStream {
     let text = Literal::string(&description(model));
-    quote!(const DRAWING: &'static str = #text;)
+    quote!(const DRAWING: &'static ::core::primitive::str = #text;)
 }
 
 /// An angle's turning part: the node it turns with, and the direction.

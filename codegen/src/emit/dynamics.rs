@@ -51,7 +51,7 @@ pub fn items(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let bind = cx.g.leaves_of(&all).into_iter().filter_map(|l| match l {
         Leaf::Param(k) => {
             let (local, field) = (&params[k as usize], &model.params[k as usize].name);
-            Some(quote!(let #local: f64 = self.#field;))
+            Some(quote!(let #local: ::core::primitive::f64 = self.#field;))
         }
         _ => None,
     });
@@ -143,10 +143,14 @@ fn forces(cx: &Ctx, model: &Model) -> Vec<TokenStream> {
         let [fx, fy] = f.value.map(|v| cx.names.operand(g, v));
         quote! {
             #outside
-            let __model = __model.with_force(#fname, [#px, #py], move |__k: #kin, _: &[f64; #ni]| -> [f64; 2] {
-                #inside
-                [#fx, #fy]
-            })?;
+            let __model = __model.with_force(
+                #fname,
+                [#px, #py],
+                move |__k: #kin, _: &[::core::primitive::f64; #ni]| -> [::core::primitive::f64; 2] {
+                    #inside
+                    [#fx, #fy]
+                },
+            )?;
         }
     };
     model.dynamics.forces.iter().map(force).collect()
@@ -161,7 +165,8 @@ fn torques(cx: &Ctx, model: &Model) -> Vec<TokenStream> {
         let value = cx.names.operand(g, t.value);
         quote! {
             #outside
-            let __model = __model.with_torque(#tname, #on, move |__k: #kin, _: &[f64; #ni]| -> f64 {
+            let __model = __model.with_torque(#tname, #on, move |__k: #kin, _: &[::core::primitive::f64; #ni]|
+                -> ::core::primitive::f64 {
                 #inside
                 #value
             })?;
@@ -199,11 +204,11 @@ fn law(g: &Graph, names: &Names, roots: &[NodeId]) -> (TokenStream, TokenStream)
     let reads = g.leaves_of(roots).into_iter().filter_map(|l| match l {
         Leaf::Input(i) => {
             let (local, i) = (&names.inputs[i as usize], lit(i as usize));
-            Some(quote!(let #local: f64 = __k.x[#i];))
+            Some(quote!(let #local: ::core::primitive::f64 = __k.x[#i];))
         }
         Leaf::Unknown(u) => {
             let (local, u) = (&names.unknowns[u as usize], lit(u as usize));
-            Some(quote!(let #local: f64 = __k.q[#u];))
+            Some(quote!(let #local: ::core::primitive::f64 = __k.q[#u];))
         }
         _ => None,
     });

@@ -278,7 +278,7 @@ impl Names {
             // `graph::dag::select`: the chosen operand itself, NaN when `a` and `b` do not compare.
             Op::Select(a, b, x, y) => {
                 let (a, b, x, y) = (o(a), o(b), o(x), o(y));
-                quote!(if #a <= #b { #x } else if #b < #a { #y } else { f64::NAN })
+                quote!(if #a <= #b { #x } else if #b < #a { #y } else { ::core::primitive::f64::NAN })
             }
         }
     }
@@ -291,7 +291,7 @@ impl Names {
         let lets =
             g.reachable(&[root]).into_iter().filter(|&n| !matches!(g.op(n), Op::Const(_) | Op::Leaf(_))).map(|n| {
                 let (id, e) = (self.temp(n), self.expr(g, n));
-                quote!(let #id: f64 = #e;)
+                quote!(let #id: ::core::primitive::f64 = #e;)
             });
         let value = self.operand(g, root);
         quote!({ #(#lets)* #value })
@@ -348,7 +348,7 @@ impl Names {
                 continue;
             }
             let (name, e) = (self.temp(n), self.expr(g, n));
-            out.extend(quote!(let #name: f64 = #e;));
+            out.extend(quote!(let #name: ::core::primitive::f64 = #e;));
         }
         (out, slots)
     }
@@ -371,14 +371,14 @@ impl Names {
         match (self.trig_slots.get(&sn), near) {
             (Some(&slot), _) => {
                 let slot = Literal::usize_unsuffixed(slot);
-                quote!(let (#s, #c): (f64, f64) = __trig.sin_cos(#slot, #arg);)
+                quote!(let (#s, #c): (::core::primitive::f64, ::core::primitive::f64) = __trig.sin_cos(#slot, #arg);)
             }
             (None, Some((near, method))) => {
                 let slot = Literal::usize_unsuffixed(*slots);
                 *slots += 1;
-                quote!(let (#s, #c): (f64, f64) = #near.#method(#slot, #arg);)
+                quote!(let (#s, #c): (::core::primitive::f64, ::core::primitive::f64) = #near.#method(#slot, #arg);)
             }
-            (None, None) => quote!(let (#s, #c): (f64, f64) = #arg.sin_cos();),
+            (None, None) => quote!(let (#s, #c): (::core::primitive::f64, ::core::primitive::f64) = #arg.sin_cos();),
         }
     }
 
@@ -422,11 +422,11 @@ impl Names {
         out.extend(match pair {
             Some((sn, cn)) => {
                 let (s, c) = (self.temp(sn), self.temp(cn));
-                quote!(let (#s, #c): (f64, f64) = #values;)
+                quote!(let (#s, #c): (::core::primitive::f64, ::core::primitive::f64) = #values;)
             }
             None => {
                 let (name, part) = (self.temp(n), Literal::usize_unsuffixed(usize::from(!sum.sine)));
-                quote!(let #name: f64 = #values.#part;)
+                quote!(let #name: ::core::primitive::f64 = #values.#part;)
             }
         });
         Some(out)
@@ -576,10 +576,14 @@ fn method(receiver: TokenStream, name: &str, arg: Option<TokenStream>) -> TokenS
 /// An `f64` literal; negative values are parenthesised so they can be method receivers.
 pub fn float(v: f64) -> TokenStream {
     if v.is_nan() {
-        return quote!(f64::NAN);
+        return quote!(::core::primitive::f64::NAN);
     }
     if v.is_infinite() {
-        return if v > 0.0 { quote!(f64::INFINITY) } else { quote!(f64::NEG_INFINITY) };
+        return if v > 0.0 {
+            quote!(::core::primitive::f64::INFINITY)
+        } else {
+            quote!(::core::primitive::f64::NEG_INFINITY)
+        };
     }
     let lit = Literal::f64_suffixed(v.abs());
     if v.is_sign_negative() && v != 0.0 { quote!((-#lit)) } else { quote!(#lit) }

@@ -44,27 +44,24 @@ pub fn types(vis: &Visibility, fields: &[Field], dims: &Dims, ni: usize, t: &Typ
          state path (`state.dq.u` -> `sens.dq.u.p` is `d(du/dinput)/dp`)."
     );
     let params_struct = named_struct(vis, params, &params_doc, fields, "Parameter");
-    let (vp, ap) = analog_types(ni, inputs, quote!(#params<f64>));
+    let (vp, ap) = analog_types(ni, inputs, quote!(#params<::core::primitive::f64>));
     let derives = std_derives(false);
-    let (conv_v, conv_a) = analog_conversions(
-        ni,
-        inputs,
-        quote!([f64; #np]),
-        Some(quote!(<#params<f64> as ::core::convert::From<_>>::from)),
-    );
+    let to_params = quote!(<#params<::core::primitive::f64> as ::core::convert::From<_>>::from);
+    let (conv_v, conv_a) =
+        analog_conversions(ni, inputs, quote!([::core::primitive::f64; #np]), Some(to_params.clone()));
     quote! {
         #params_struct
         #[doc = #sens_doc]
         #[derive(#derives)]
         #vis struct #sens {
             /// `d q / d p`.
-            pub q: #unknowns<#params<f64>>,
+            pub q: #unknowns<#params<::core::primitive::f64>>,
             /// Sensitivities of the velocity analogs.
             pub dq: #unknowns<#vp>,
             /// Sensitivities of the acceleration analogs.
             pub d2q: #unknowns<#ap>,
             /// Sensitivities of the outputs.
-            pub out: #outputs<#params<f64>>,
+            pub out: #outputs<#params<::core::primitive::f64>>,
             /// Sensitivities of the outputs' velocity analogs.
             pub dout: #outputs<#vp>,
             /// Sensitivities of the outputs' acceleration analogs.
@@ -75,10 +72,10 @@ pub fn types(vis: &Visibility, fields: &[Field], dims: &Dims, ni: usize, t: &Typ
         impl ::core::convert::From<#rt::Sens<#n, #ni_lit, #no, #np>> for #sens {
             fn from(__s: #rt::Sens<#n, #ni_lit, #no, #np>) -> Self {
                 #sens {
-                    q: ::core::convert::From::from(__s.q.map(<#params<f64> as ::core::convert::From<_>>::from)),
+                    q: ::core::convert::From::from(__s.q.map(#to_params)),
                     dq: ::core::convert::From::from(__s.dq.map(#conv_v)),
                     d2q: ::core::convert::From::from(__s.d2q.map(#conv_a)),
-                    out: ::core::convert::From::from(__s.out.map(<#params<f64> as ::core::convert::From<_>>::from)),
+                    out: ::core::convert::From::from(__s.out.map(#to_params)),
                     dout: ::core::convert::From::from(__s.dout.map(#conv_v)),
                     d2out: ::core::convert::From::from(__s.d2out.map(#conv_a)),
                     flat: __s,
@@ -102,7 +99,7 @@ fn kernels(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
     let named = quote!(<Self as #rt::NamedSensitivities<#n, #ni, #no, #np>>);
     let input = quote!(input: impl ::core::convert::Into<#inputs>);
     let ret = quote!(::core::result::Result<(#state, #sens), #rt::Error>);
-    let (x, cfg) = (quote!(__x: &[f64; #ni]), quote!(__cfg: &#rt::NewtonConfig));
+    let (x, cfg) = (quote!(__x: &[::core::primitive::f64; #ni]), quote!(__cfg: &#rt::NewtonConfig));
     quote! {
         impl #name {
             /// Solves the kinematics from `guess` and the exact sensitivities of positions,
@@ -114,14 +111,14 @@ fn kernels(model: &Model, plan: &Plan, t: &Types) -> TokenStream {
         }
         #lints
         impl #rt::Sensitivities<#n, #ni, #no, #np> for #name {
-            fn params_flat(&self) -> [f64; #np] {
+            fn params_flat(&self) -> [::core::primitive::f64; #np] {
                 [#(self.#pnames),*]
             }
-            fn with_params_flat(&self, __p: [f64; #np]) -> Self {
+            fn with_params_flat(&self, __p: [::core::primitive::f64; #np]) -> Self {
                 #name::from_param_values(__p)
             }
-            fn sensitivities_flat(&self, #x, __guess: &[f64; #n], #cfg) -> #flat { #fused }
-            fn sensitivities_at_flat(&self, #x, __q: &[f64; #n], #cfg) -> #flat { #at }
+            fn sensitivities_flat(&self, #x, __guess: &[::core::primitive::f64; #n], #cfg) -> #flat { #fused }
+            fn sensitivities_at_flat(&self, #x, __q: &[::core::primitive::f64; #n], #cfg) -> #flat { #at }
         }
         impl #rt::NamedSensitivities<#n, #ni, #no, #np> for #name {
             type Sens = #sens;

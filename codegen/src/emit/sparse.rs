@@ -164,12 +164,12 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
         struct #id;
         impl #rt::SparseSteps<#n, #nlu> for #id {
             #[inline]
-            fn load<const NNZ: usize>(
+            fn load<const NNZ: ::core::primitive::usize>(
                 __pattern: &#rt::SparsePattern,
-                __v: &[f64; NNZ],
-                __r: &[f64; #n],
-                __c: &[f64; #n],
-                __a: &mut [f64; #nlu],
+                __v: &[::core::primitive::f64; NNZ],
+                __r: &[::core::primitive::f64; #n],
+                __c: &[::core::primitive::f64; #n],
+                __a: &mut [::core::primitive::f64; #nlu],
             ) {
                 // The code below is this block's pattern's: paired with another, it would be wrong.
                 ::core::debug_assert!(::core::ptr::eq(__pattern, &#pattern));
@@ -178,17 +178,22 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
             #[inline]
             fn eliminate(
                 _: &#rt::SparsePattern,
-                __a: &mut [f64; #nlu],
-                __d: &mut [f64; #n],
-                __det: &mut f64,
-                __negative: &mut bool,
-            ) -> ::core::option::Option<f64> {
+                __a: &mut [::core::primitive::f64; #nlu],
+                __d: &mut [::core::primitive::f64; #n],
+                __det: &mut ::core::primitive::f64,
+                __negative: &mut ::core::primitive::bool,
+            ) -> ::core::option::Option<::core::primitive::f64> {
                 let mut __p = #rt::Pivots::new(*__det, *__negative);
                 #elim
                 __p.finish(__det, __negative)
             }
             #[inline]
-            fn substitute(_: &#rt::SparsePattern, __a: &[f64; #nlu], __d: &[f64; #n], __z: &mut [f64; #n]) {
+            fn substitute(
+                _: &#rt::SparsePattern,
+                __a: &[::core::primitive::f64; #nlu],
+                __d: &[::core::primitive::f64; #n],
+                __z: &mut [::core::primitive::f64; #n],
+            ) {
                 #subst
             }
         }

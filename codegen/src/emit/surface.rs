@@ -129,8 +129,8 @@ fn array_conversions(s: &Surface, t: &Types) -> TokenStream {
         [one] => {
             let i = &one.name;
             quote! {
-                impl ::core::convert::From<f64> for #inputs<f64> {
-                    fn from(__v: f64) -> Self {
+                impl ::core::convert::From<::core::primitive::f64> for #inputs<::core::primitive::f64> {
+                    fn from(__v: ::core::primitive::f64) -> Self {
                         #inputs { #i: __v }
                     }
                 }
@@ -146,7 +146,7 @@ fn params_struct(s: &Surface) -> TokenStream {
     let Surface { docs, vis, name, .. } = s;
     let fields = s.params.iter().map(|f| {
         let (d, n) = (f.doc("Parameter"), &f.name);
-        quote!(#d pub #n: f64,)
+        quote!(#d pub #n: ::core::primitive::f64,)
     });
     let default = match &s.defaults {
         Some(values) if values.len() == s.params.len() => {
@@ -192,7 +192,7 @@ pub fn named_struct(vis: &Visibility, ty: &Ident, doc: &str, fields: &[Field], k
         #[doc = #doc_line]
         #derive
         #[allow(non_snake_case)]
-        #vis struct #ty<T = f64> {
+        #vis struct #ty<T = ::core::primitive::f64> {
             #(#docs pub #names: T,)*
             #marker
         }
@@ -241,7 +241,7 @@ fn outputs_struct(s: &Surface, t: &Types) -> TokenStream {
         #[doc = #doc]
         #derive
         #[allow(non_snake_case)]
-        #vis struct #ty<T = f64> {
+        #vis struct #ty<T = ::core::primitive::f64> {
             #(#fields)*
         }
         #conversions
@@ -263,22 +263,18 @@ pub fn analog_conversions(
     elem: Option<TokenStream>,
 ) -> (TokenStream, TokenStream) {
     let nil = lit(ni);
+    // Through the trait by its path: `Inputs::from` needs `From` in scope (the prelude's).
+    let from = quote!(<#inputs<_> as ::core::convert::From<_>>::from);
+    let from_f64 = quote!(<#inputs<::core::primitive::f64> as ::core::convert::From<_>>::from);
     match (ni, elem) {
         // One input: the array's element type is known to `map`, no annotation needed.
         (1, Some(e)) => (quote!(|__r| #e(__r[0])), quote!(|__r| #e(__r[0][0]))),
         (1, None) => (quote!(|__r| __r[0]), quote!(|__r| __r[0][0])),
         (_, Some(e)) => (
-            quote!(|__r: [#flat; #nil]| <#inputs<_> as ::core::convert::From<_>>::from(__r.map(#e))),
-            quote!(|__r: [[#flat; #nil]; #nil]| {
-                <#inputs<_> as ::core::convert::From<_>>::from(__r.map(|__s| <#inputs<_> as ::core::convert::From<_>>::from(__s.map(#e))))
-            }),
+            quote!(|__r: [#flat; #nil]| #from(__r.map(#e))),
+            quote!(|__r: [[#flat; #nil]; #nil]| #from(__r.map(|__s| #from(__s.map(#e))))),
         ),
-        (_, None) => (
-            quote!(<#inputs<f64> as ::core::convert::From<_>>::from),
-            quote!(|__r: [[#flat; #nil]; #nil]| {
-                <#inputs<_> as ::core::convert::From<_>>::from(__r.map(<#inputs<f64> as ::core::convert::From<_>>::from))
-            }),
-        ),
+        (_, None) => (quote!(#from_f64), quote!(|__r: [[#flat; #nil]; #nil]| #from(__r.map(#from_f64)))),
     }
 }
 
@@ -288,8 +284,8 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
     let Types { inputs, unknowns, outputs, state, .. } = t;
     let ni = s.inputs.len();
     let (nl, nil, nol) = (lit(s.unknowns.len()), lit(ni), lit(s.n_outputs()));
-    let (v_ty, a_ty) = analog_types(ni, inputs, quote!(f64));
-    let (conv_v, conv_a) = analog_conversions(ni, inputs, quote!(f64), None);
+    let (v_ty, a_ty) = analog_types(ni, inputs, quote!(::core::primitive::f64));
+    let (conv_v, conv_a) = analog_conversions(ni, inputs, quote!(::core::primitive::f64), None);
     let analog_doc = match s.inputs.first() {
         Some(i) if ni == 1 => format!("`d/d{}`", i.name.unraw()),
         _ => "partial derivatives: `dq.u.i` is `d u / d i`".to_string(),
@@ -301,10 +297,12 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
     let motion_struct = motion_struct(s, t);
     // A state serializes by name: its named fields without the flat copy of the same values,
     // which deserialization rebuilds from them (the runtime's `StateByName`).
+    // Serde reads these types where the struct is declared: `f64` by its path, as in the code.
+    let f64 = "::core::primitive::f64";
     let (vs, as_) = if ni == 1 {
-        ("f64".to_string(), "f64".to_string())
+        (f64.to_string(), f64.to_string())
     } else {
-        (format!("{inputs}<f64>"), format!("{inputs}<{inputs}<f64>>"))
+        (format!("{inputs}<{f64}>"), format!("{inputs}<{inputs}<{f64}>>"))
     };
     let by_name = format!(
         "::kinloop::__gen::StateByName<{inputs}, {unknowns}, {unknowns}<{vs}>, {unknowns}<{as_}>, {outputs}, \

@@ -38,66 +38,75 @@ macro_rules! __rejected_mechanism {
     ) => {
         impl $name {
             /// The mechanism's type name.
-            pub const NAME: &'static str = $plain;
+            pub const NAME: &'static ::core::primitive::str = $plain;
             /// Parameter names, in declaration order.
-            pub const PARAMS: [&'static str; $np] = [$($ps),*];
+            pub const PARAMS: [&'static ::core::primitive::str; $np] = [$($ps),*];
             /// Input names.
-            pub const INPUTS: [&'static str; $ni] = [$($is),*];
+            pub const INPUTS: [&'static ::core::primitive::str; $ni] = [$($is),*];
             /// Unknown names.
-            pub const UNKNOWNS: [&'static str; $n] = [$($us),*];
+            pub const UNKNOWNS: [&'static ::core::primitive::str; $n] = [$($us),*];
             /// Scalar equation names (none known: the declaration was rejected).
-            pub const EQUATIONS: [&'static str; $n] = [""; $n];
+            pub const EQUATIONS: [&'static ::core::primitive::str; $n] = [""; $n];
             /// Output columns.
-            pub const OUTPUTS: [&'static str; $no] = [$($os),*];
+            pub const OUTPUTS: [&'static ::core::primitive::str; $no] = [$($os),*];
             /// The decomposition (none: the declaration was rejected).
             pub const BLOCKS: &'static [$crate::BlockInfo] = &[];
             /// The decomposition in words.
-            pub const DECOMPOSITION: &'static str = "not analysed: `mechanism!` rejected the declaration";
+            pub const DECOMPOSITION: &'static ::core::primitive::str =
+                "not analysed: `mechanism!` rejected the declaration";
 
             /// Parameter values in declaration order.
-            pub fn param_values(&self) -> [f64; $np] {
+            pub fn param_values(&self) -> [::core::primitive::f64; $np] {
                 [$(self.$pf),*]
             }
 
             /// Builds the mechanism from parameter values in declaration order.
-            pub fn from_param_values(values: [f64; $np]) -> Self {
+            pub fn from_param_values(values: [::core::primitive::f64; $np]) -> Self {
                 $name { $($pf: values[$pidx]),* }
             }
         }
 
         impl $crate::Mechanism<$n, $ni, $no> for $name {
             $crate::__mechanism_consts!($name, $n, $ni, $no);
-            fn guess_flat(&self, _: &[f64; $ni]) -> [f64; $n] {
+            fn guess_flat(&self, _: &[::core::primitive::f64; $ni]) -> [::core::primitive::f64; $n] {
                 $crate::generated::rejected()
             }
             fn position_flat(
                 &self,
-                _: &[f64; $ni],
-                _: &[f64; $n],
+                _: &[::core::primitive::f64; $ni],
+                _: &[::core::primitive::f64; $n],
                 _: &$crate::NewtonConfig,
-            ) -> ::core::result::Result<([f64; $n], $crate::SolveReport), $crate::Error> {
+            ) -> ::core::result::Result<([::core::primitive::f64; $n], $crate::SolveReport), $crate::Error> {
                 $crate::generated::rejected()
             }
             fn kinematics_flat(
                 &self,
-                _: &[f64; $ni],
-                _: &[f64; $n],
+                _: &[::core::primitive::f64; $ni],
+                _: &[::core::primitive::f64; $n],
                 _: &$crate::NewtonConfig,
             ) -> $crate::generated::KinResult<$n, $ni, $no> {
                 $crate::generated::rejected()
             }
             fn kinematics_at_flat(
                 &self,
-                _: &[f64; $ni],
-                _: &[f64; $n],
+                _: &[::core::primitive::f64; $ni],
+                _: &[::core::primitive::f64; $n],
                 _: &$crate::NewtonConfig,
             ) -> $crate::generated::KinResult<$n, $ni, $no> {
                 $crate::generated::rejected()
             }
-            fn outputs_flat(&self, _: &[f64; $ni], _: &[f64; $n]) -> [f64; $no] {
+            fn outputs_flat(
+                &self,
+                _: &[::core::primitive::f64; $ni],
+                _: &[::core::primitive::f64; $n],
+            ) -> [::core::primitive::f64; $no] {
                 $crate::generated::rejected()
             }
-            fn jacobian_flat(&self, _: &[f64; $ni], _: &[f64; $n]) -> $crate::Jac<$n, $ni> {
+            fn jacobian_flat(
+                &self,
+                _: &[::core::primitive::f64; $ni],
+                _: &[::core::primitive::f64; $n],
+            ) -> $crate::Jac<$n, $ni> {
                 $crate::generated::rejected()
             }
         }

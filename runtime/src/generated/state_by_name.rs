@@ -58,14 +58,18 @@ pub struct StateByName<I, U, UV, UA, O, OV, OA> {
 #[macro_export]
 macro_rules! __state_by_name {
     ($state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal, one) => {
-        $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no, f64, f64,
-            |__v: f64| [__v], |__a: f64| [[__a]]);
+        $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no,
+            ::core::primitive::f64, ::core::primitive::f64,
+            |__v: ::core::primitive::f64| [__v], |__a: ::core::primitive::f64| [[__a]]);
     };
     ($state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal, many) => {
-        $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no, $inputs<f64>,
-            $inputs<$inputs<f64>>, <[f64; $ni] as ::core::convert::From<_>>::from,
-            |__a: $inputs<$inputs<f64>>| <[$inputs<f64>; $ni] as ::core::convert::From<_>>::from(__a)
-                .map(<[f64; $ni] as ::core::convert::From<_>>::from));
+        $crate::__state_by_name!(@impl $state, $inputs, $unknowns, $outputs, $n, $ni, $no,
+            $inputs<::core::primitive::f64>, $inputs<$inputs<::core::primitive::f64>>,
+            <[::core::primitive::f64; $ni] as ::core::convert::From<_>>::from,
+            |__a: $inputs<$inputs<::core::primitive::f64>>| {
+                <[$inputs<::core::primitive::f64>; $ni] as ::core::convert::From<_>>::from(__a)
+                    .map(<[::core::primitive::f64; $ni] as ::core::convert::From<_>>::from)
+            });
     };
     (@impl $state:ident, $inputs:ident, $unknowns:ident, $outputs:ident, $n:literal, $ni:literal, $no:literal,
         $v:ty, $a:ty, $back_v:expr, $back_a:expr) => {

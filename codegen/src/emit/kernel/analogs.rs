@@ -25,7 +25,7 @@ impl Kernel<'_> {
         let (lu, rv) = (format_ident!("__lu{}", b), format_ident!("__rv{}", b));
         let mut out = self.lets(self.scopes.vel[b]);
         let rows = self.names.rows(self.g, &bp.vel);
-        out.extend(quote!(let #rv: [[f64; #ni]; #n] = #rows;));
+        out.extend(quote!(let #rv: [[::core::primitive::f64; #ni]; #n] = #rows;));
         let at = self.mode == Mode::At;
         // The factorisation the analogs solve with: the position solve's where it made one
         // (linear blocks) or kept Newton's, otherwise made here.
@@ -79,7 +79,7 @@ impl Kernel<'_> {
         // Deferred, the end tests the smallest pivot ratio `__health` records.
         let checked = self.deferred.then(|| quote!(__CHECKED &&));
         quote! {
-            let __j: [[f64; #n]; #n] = #j;
+            let __j: [[::core::primitive::f64; #n]; #n] = #j;
             #factor
             if #checked !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                 let __r = #rt::first_bad_row(__j).or(#rt::first_bad_row(#rv));
@@ -126,7 +126,7 @@ impl Kernel<'_> {
             quote!([#(#w),*])
         });
         out.extend(quote! {
-            let __ra: [[f64; #npl]; #n] = #rows;
+            let __ra: [[::core::primitive::f64; #npl]; #n] = #rows;
             let [#(#ws),*] = #lu.solve_cols(__ra);
         });
         out
@@ -157,7 +157,7 @@ impl Kernel<'_> {
             quote!([#(#ids),*])
         });
         out.extend(quote! {
-            let __rs: [[f64; #width]; #n] = #rows;
+            let __rs: [[::core::primitive::f64; #width]; #n] = #rows;
             let [#(#binds),*] = #lu.solve_cols(__rs);
         });
         out

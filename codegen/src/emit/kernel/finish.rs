@@ -68,7 +68,7 @@ impl Kernel<'_> {
         // result: a memcpy per step.
         let sink = if self.names.sweep_kernel() { quote!(__sink) } else { quote!(#rt::ByValue) };
         quote! {
-            let __sum: f64 = #sum;
+            let __sum: ::core::primitive::f64 = #sum;
             #rt::checked_with(self, __sum, #guess, #sink, || #kin)
         }
     }
@@ -132,8 +132,8 @@ impl Kernel<'_> {
         checks.push(quote!(__sum));
         let all = balanced_sum(checks);
         quote! {
-            let __sum: f64 = #sum;
-            let __accept: bool = (#all).is_finite() && __health.min_pivot >= __cfg.singular_tol;
+            let __sum: ::core::primitive::f64 = #sum;
+            let __accept: ::core::primitive::bool = (#all).is_finite() && __health.min_pivot >= __cfg.singular_tol;
             __mode.finish((__accept, __sum), (self, __x, __guess, __cfg, __trig), __sink, || #kin)
         }
     }

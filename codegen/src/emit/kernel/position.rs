@@ -54,7 +54,8 @@ impl Kernel<'_> {
         quote! {
             let #lu = #factor;
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
-                return ::core::result::Result::Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, #rt::first_bad_row(#aug)));
+                let __row = #rt::first_bad_row(#aug);
+                return ::core::result::Result::Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __row));
             }
             let [#(#qs),*] = #lu.solve([#(#rhs),*]);
         }
@@ -176,7 +177,7 @@ impl Kernel<'_> {
             quote!(__e.keep = #kept_values;)
         };
         let closure = quote! {
-            |__z: &[f64; #n], __e: &mut #ty| {
+            |__z: &[::core::primitive::f64; #n], __e: &mut #ty| {
                 let [#(#qs),*] = *__z;
                 #inner
                 __e.f = [#(#f),*];
@@ -184,7 +185,7 @@ impl Kernel<'_> {
                 #keep_field
             }
         };
-        let z0 = quote!(let __z0: [f64; #n] = [#(#guess),*];);
+        let z0 = quote!(let __z0: [::core::primitive::f64; #n] = [#(#guess),*];);
         let guess_eval = quote! {
             let mut #at = {
                 let [#(#qs),*] = __z0;
@@ -237,7 +238,7 @@ impl Kernel<'_> {
             match entry {
                 Some((r, c)) if dense => {
                     let (id, r, c) = (self.names.temp(x), lit(r), lit(c));
-                    from_j.push(quote!(let #id: f64 = #at.j[#r][#c];));
+                    from_j.push(quote!(let #id: ::core::primitive::f64 = #at.j[#r][#c];));
                 }
                 _ => kept.push(x),
             }
