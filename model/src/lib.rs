@@ -71,11 +71,11 @@
 //! sine and cosine of one argument as one instruction, consecutive arithmetic operations
 //! sharing a dispatch) and, per closed-form block, a small program compiled when the model is
 //! built (the emitter's folds of the graph's constants decided once), the blocks'
-//! factorisations written in place: on the gallery's rhombic drive it executes about 3.0 times
+//! factorisations written in place: on the gallery's rhombic drive it executes about 3.7 times
 //! the compiled step's instructions, on the four-bar 2.6 times, on a Newton-dominated class IV
-//! block 1.7 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.4
+//! block 1.7 times, on the ring of 64 four-bar loops (one sparse block of 128 unknowns) 2.6
 //! times. What remains is the interpretation's dispatch per operation and the per-block
-//! bookkeeping of small blocks. Reading and planning a declaration takes 0.4 to 2.1
+//! bookkeeping of small blocks. Reading and planning a declaration takes 0.6 to 3.0
 //! milliseconds (`BENCHMARKS.md`, "The run: mechanisms read at run time").
 //!
 //! # Sweeps and the runtime's algorithms
