@@ -24,6 +24,7 @@ mod limit_positions_extreme_scales;
 mod near_singular;
 mod prop_linkages;
 mod quantity_kinds;
+mod readme_tour;
 mod reference_mpmath;
 mod sensitivities;
 mod shadowed_primitives;

@@ -6,6 +6,7 @@ use kinloop::{Mechanism, NewtonConfig};
 use kinloop_fixtures::FiveBar;
 use std::f64::consts::{PI, TAU};
 
+pub mod doc_snippets;
 pub mod tol;
 
 /// A property test's configuration: `cases` cases from the fixed `seed`, the same on every run

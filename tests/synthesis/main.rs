@@ -15,6 +15,7 @@ mod cognates;
 mod convergence;
 mod defects;
 mod determinism;
+mod docs_usage;
 mod evolution;
 mod grashof;
 mod jacobian;
