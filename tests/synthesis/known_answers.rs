@@ -26,7 +26,7 @@ pub fn check_recovered(report: &SynthesisReport, truth: &[f64], size: f64) {
     let best = report.best().unwrap_or_else(|| panic!("no valid candidate: {report:#?}"));
     assert!(best.max_error <= RESIDUAL * size, "max error {:e}", best.max_error);
     // With the exact Jacobian the best start converges in few steps (measured: 6 to 18
-    // evaluations, 46 for the 22 unknowns of the fitting case, from starts up to 40 % off); a
+    // evaluations, 40 for the 22 unknowns of the fitting case, from starts up to 40 % off); a
     // wrong derivative would need far more, or stall.
     assert!(best.local.evaluations <= 60, "{:?}", best.local);
     for (name, (got, want)) in report.variables.iter().zip(best.values.iter().zip(truth)) {
