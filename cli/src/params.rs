@@ -84,7 +84,12 @@ pub fn require_precise_angles(model: &Model) -> Result<(), Failed> {
 /// Why the first angle parameter of `model` beyond the largest angle its solves take precisely
 /// cannot be solved with, in the command line's terms; `None` where there is none.
 pub fn imprecise_angle(model: &Model) -> Option<String> {
-    let bound = model.sweep_config().newton.largest_precise_angle();
+    imprecise_angle_within(model, model.sweep_config().newton.largest_precise_angle())
+}
+
+/// [`imprecise_angle`] against `bound`, the largest angle a solver of its own takes precisely
+/// (a synthesis's, tighter than a sweep's).
+pub fn imprecise_angle_within(model: &Model, bound: f64) -> Option<String> {
     let k = model.angle_param_beyond(bound)?;
     let (name, value) = (&model.params()[k], model.param_values()[k]?);
     // The distance to the next double away from zero: what an angle added to it is rounded to.

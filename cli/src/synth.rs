@@ -15,6 +15,7 @@ use kinloop_model::{Count, Model};
 use kinloop_runtime::paths::sweep::MAX_TURNS;
 use kinloop_runtime::synthesis::{
     Candidate, Constraints, Defect, Design, Origin, Refused, Search, SynthesisError, SynthesisReport, Task,
+    default_newton,
 };
 use kinloop_runtime::{Number, QuantityKind};
 use std::f64::consts::TAU;
@@ -101,6 +102,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         }
     }
     params::require_values(model)?;
+    precise_angles(model, &design, default_newton().largest_precise_angle())?;
     let rows = crate::targets::read(req.targets)?;
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
@@ -182,6 +184,45 @@ fn problem_error(name: &str, e: SynthesisError, req: &Request) -> Failed {
         )),
         e => exit::usage(format!("{name}: {e}")),
     }
+}
+
+/// Refuses an angle parameter beyond `bound`, the largest angle the search's solves take
+/// precisely (its default Newton configuration's, tighter than a sweep's: about 4.5e4 rad), as the
+/// other commands refuse one beyond theirs: a usage error naming the parameter, the bound and
+/// the option that gives it. The search refused it as a failed synthesis (exit code 1) with the
+/// library's advice, `phi0.rem_euclid(TAU)`, which a command line cannot follow. A design
+/// variable is checked at its value nearest 0, as the search checks it: refused only where its
+/// whole range lies beyond (a design within it is refused at its evaluation alone).
+fn precise_angles(model: &Model, design: &Design, bound: f64) -> Result<(), Failed> {
+    // The fixed parameters first, every design variable at 0 (no angle beyond any bound).
+    let mut fixed = model.clone();
+    for v in design.variables() {
+        fixed.set_param(&v.name, 0.0);
+    }
+    if let Some(why) = params::imprecise_angle_within(&fixed, bound) {
+        return Err(exit::usage(format!(
+            "{}: {why}; the search solves to a tighter tolerance than the other commands, so its bound is smaller",
+            model.name()
+        )));
+    }
+    for v in design.variables() {
+        fixed.set_param(&v.name, 0.0f64.clamp(v.lo, v.hi));
+        if fixed.angle_param_beyond(bound).is_some() {
+            return Err(exit::usage(format!(
+                "{}: --vary {}={}..{}: every value is an angle beyond {} rad, the largest angle the search solves \
+                 precisely, so an angle added to it is lost to rounding; give a range with less whole turns, within \
+                 {} rad (in radians)",
+                model.name(),
+                v.name,
+                Number(v.lo),
+                Number(v.hi),
+                Number(bound),
+                Number(bound)
+            )));
+        }
+        fixed.set_param(&v.name, 0.0);
+    }
+    Ok(())
 }
 
 /// Refuses a design variable also given a value with `--params`: the search sets it, so the

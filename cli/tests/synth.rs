@@ -783,3 +783,38 @@ fn the_rms_error_of_targets_near_the_largest_double_is_finite() {
         assert!((max - 1e308 * std::f64::consts::SQRT_2).abs() <= 1e-15 * max, "{row}");
     }
 }
+
+/// A fixed angle parameter beyond the largest angle the search solves precisely (its own
+/// bound, about 4.5e4 rad, tighter than a sweep's 4.5e6) is a usage error naming the parameter
+/// and saying to give it less whole turns with `--params`, as the other commands say of theirs;
+/// so is a design variable whose whole range lies beyond it, named with its `--vary`. Both
+/// failed as a synthesis (exit code 1: with a huge `--params` before any start, the library's
+/// `alpha.rem_euclid(TAU)`; beyond the search's bound alone, every start refused) or, for the
+/// range, a report of starts refused with that advice.
+#[test]
+fn an_angle_parameter_too_large_to_search_precisely_is_a_usage_error() {
+    let coupler = shipped("coupler_four_bar.kl");
+    let circle = file("synth_precise_angle.csv", "1000,0\n0,1000\n-1000,0\n0,-1000\n");
+    let args = ["synth", &coupler, "--targets", &circle, "--path", "p", "--starts", "4"];
+    for (alpha, written) in [("1e17", "1e17"), ("1e5", "100000")] {
+        let params = format!("alpha={alpha}");
+        let out = kinloop(&[&args[..], &["--vary", "a=0.8..1.4,b=2..3.5", "--params", &params]].concat());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{alpha}: {err}");
+        assert!(err.contains(&format!("parameter `alpha` is an angle of {written} rad, beyond 45035.99")), "{err}");
+        assert!(err.contains("give it less whole turns") && err.contains("--params alpha=VALUE"), "{err}");
+        assert!(!err.contains("rem_euclid") && out.stdout.is_empty(), "{alpha}: {err}");
+    }
+    let out = kinloop(&[&args[..], &["--vary", "a=0.8..1.4,alpha=5e4..6e4"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--vary alpha=50000..60000: every value is an angle beyond 45035.99"), "{err}");
+    assert!(!err.contains("rem_euclid") && out.stdout.is_empty(), "{err}");
+    // Within the bound, and a range reaching into it, the search runs as before.
+    let within: [&[&str]; 2] =
+        [&["--vary", "a=0.8..1.4,b=2..3.5", "--params", "alpha=4e4"], &["--vary", "a=0.8..1.4,alpha=-1..6e4"]];
+    for extra in within {
+        let out = kinloop(&[&args[..], extra].concat());
+        assert_eq!(out.status.code(), Some(0), "{extra:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+}

@@ -45,7 +45,7 @@ pub use error::SynthesisError;
 pub use evolution::{DeConfig, Global};
 pub use halton::Halton;
 pub use local::{LocalConfig, LocalReport};
-pub use problem::{Problem, ProblemOf};
+pub use problem::{Problem, ProblemOf, default_newton};
 pub use refusal::{RefusalKind, Refused};
 pub use report::{Rejections, SynthesisReport, grashof_code};
 pub use residuals::Residuals;

@@ -161,7 +161,7 @@ impl<K: SensKernel> ProblemOf<K> {
             placement: task.placement,
             checks: Checks::default(),
             guess: Guess::Declared,
-            newton: NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16),
+            newton: default_newton(),
             sweep: SweepConfig::default(),
             scale: size.residual,
             length: size.length,
@@ -382,6 +382,24 @@ impl<K: SensKernel> ProblemOf<K> {
         x.as_mut().fill(v);
         x
     }
+}
+
+/// The Newton configuration of a problem's position solves unless [`ProblemOf::with_newton`]
+/// sets another: a residual tolerance of `1e-14` and a step tolerance of `1e-16`, positions to
+/// rounding, so that the targets can be met to rounding. Its
+/// [`largest_precise_angle`](NewtonConfig::largest_precise_angle), the largest angle parameter a
+/// search accepts, is therefore tighter than a sweep's by default: a program that takes the
+/// parameters from its user can say so in its own terms before it searches.
+///
+/// ```
+/// use kinloop_runtime::NewtonConfig;
+/// use kinloop_runtime::synthesis::default_newton;
+/// let largest = default_newton().largest_precise_angle();
+/// assert!(largest > 4e4 && largest < 5e4);
+/// assert!(largest < NewtonConfig::default().largest_precise_angle());
+/// ```
+pub fn default_newton() -> NewtonConfig {
+    NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
 }
 
 /// Refuses timing whose motion from target to target turns an angle input more than a sweep
