@@ -596,3 +596,21 @@ fn a_loop_closed_with_a_negated_zero_is_read_as_with_zero() {
         assert_eq!((&got.q, &got.dq, &got.out), (&want.q, &want.dq, &want.out), "{negated}");
     }
 }
+
+/// An inner doc comment is named as it was written: a block one, `/*! ... */`, was called
+/// "`//!`", a comment the text does not have. (The `//!` of a line keeps its name.)
+#[test]
+fn an_inner_block_doc_comment_is_named_as_written() {
+    let body = "    params a = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == a * phi;\n}\n";
+    let cases = [("/*! A lever. */", "`/*! ... */`"), ("//! A lever.", "`//!`")];
+    for (comment, named) in cases {
+        let text = format!("pub struct S {{\n    {comment}\n{body}");
+        let Err(ReadError::Rejected(d)) = Model::read("doc.kl", &text) else { panic!("accepted: {text}") };
+        let got: Vec<(&str, usize, usize)> = d.items.iter().map(|i| (i.message.as_str(), i.line, i.column)).collect();
+        let message = format!(
+            "an inner doc comment ({named}) is not accepted in a declaration; document the mechanism or an item with \
+             `///` before it, or write a plain comment with `//`"
+        );
+        assert_eq!(got, [(message.as_str(), 2, 5)], "{text}");
+    }
+}

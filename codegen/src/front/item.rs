@@ -157,7 +157,7 @@ pub(super) fn not_struct_doc(attr: &Attribute) -> Option<syn::Error> {
     }
 }
 
-/// An inner doc comment (`//!`, which the compiler turns into `#![doc = ...]`) or inner
+/// An inner doc comment (`//!` or `/*! ... */`, which the compiler turns into `#![doc = ...]`) or inner
 /// attribute (`#![...]`) at the front of `input`: consumed, and the error that says what to
 /// write instead. syn's own message for it ("expected square brackets") names neither.
 pub(super) fn inner_attribute(input: ParseStream) -> syn::Result<Option<syn::Error>> {
@@ -175,7 +175,14 @@ pub(super) fn inner_attribute(input: ParseStream) -> syn::Result<Option<syn::Err
     } else {
         false
     };
-    let what = if is_doc { "an inner doc comment (`//!`)" } else { "an inner attribute (`#![...]`)" };
+    // A block comment `/*! ... */` is the same attribute as a line's `//!`: its source text
+    // tells which was written (none where the tokens have no source, as in a macro's output).
+    let block = pound.span.source_text().is_some_and(|t| t.starts_with("/*!"));
+    let what = match (is_doc, block) {
+        (true, true) => "an inner doc comment (`/*! ... */`)",
+        (true, false) => "an inner doc comment (`//!`)",
+        (false, _) => "an inner attribute (`#![...]`)",
+    };
     Ok(Some(syn::Error::new(
         pound.span,
         format!(
