@@ -227,7 +227,9 @@ enum Command {
         /// size of a length (from 1e-9 to 1).
         #[arg(long, default_value_t = 0.01, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         ds: f64,
-        /// The most points written (at least 1, at most 10000000).
+        /// The most points written (at least 1, at most 10000000). Unlike `sweep`, every point
+        /// is kept until the trace ends (they are written then): about 100 B a point for a
+        /// four-bar, some 1 GB at the most.
         #[arg(long, default_value_t = 100_000, allow_hyphen_values = true, value_parser = count::count)]
         max_points: usize,
         /// Angles in degrees (inputs given and values written); otherwise radians.

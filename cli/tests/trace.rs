@@ -255,6 +255,20 @@ fn the_most_points_stop_the_trace_and_it_says_so() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("stopped at --max-points 7"));
 }
 
+/// The help of `--max-points` says what the most points cost: every point is kept until the
+/// trace ends, as `extremes` says of its samples; it gave the bound alone, which takes about a
+/// gigabyte.
+#[test]
+fn the_help_states_what_the_points_kept_take() {
+    let out = kinloop(&["trace", "--help"]);
+    let help = String::from_utf8_lossy(&out.stdout);
+    // The option's own entry: from its name to the next option's.
+    let entry = help.split("\n      --max-points <").nth(1).and_then(|rest| rest.split("\n      --").next());
+    let states =
+        |e: &str| e.contains("every point is kept until the trace ends") && e.contains("some 1 GB at the most");
+    assert!(entry.is_some_and(states), "{help}");
+}
+
 /// A declaration without unknowns (a point and an output of the input alone) traces its input
 /// from `--from` to past `--to`, every point the closed form's: the SVD of its empty Jacobian
 /// panicked ("Cannot compute the SVD of an empty matrix", exit code 101).
