@@ -285,18 +285,8 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     }
     // The product saturates: a count too large for usize is more cells than any page.
     let cells = counts.iter().fold(1usize, |p, &c| p.saturating_mul(c));
-    if cells > max {
-        // Without --samples the grid is the default's least, two values per input: fewer
-        // --samples, as said where they are given, would be a grid of no range.
-        let advice = match req.samples {
-            Some(_) => "fewer --samples, or more --frames".to_string(),
-            None => format!("give --frames {cells} or more (the default grid has two values of each input at least)"),
-        };
-        return Err(usage(format!(
-            "a grid of {} is more than the page's {}: {advice}",
-            Count(cells, "cell"),
-            Count(max, "pose")
-        )));
+    if cells > max.min(MAX_GRID_CELLS) {
+        return Err(usage(too_many_cells(cells, max, req.samples.is_some())));
     }
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
@@ -337,6 +327,30 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
         e => failed(&e),
     })?;
     write_out(req.out, &text)
+}
+
+/// Why a grid of `cells` cells is refused, more than the page's `max` poses or than the
+/// [`MAX_GRID_CELLS`] a grid holds whatever the page (`samples`: whether `--samples` gave the
+/// counts), with advice that works when followed: more `--frames` raise the page's bound, never
+/// the grid's, past which only fewer values do. Without `--samples` the default grid has two
+/// values of each input at least, so that fewer values means one value of some inputs. (More
+/// `--frames` were advised past the grid's bound too, and then refused by the grid.)
+fn too_many_cells(cells: usize, max: usize, samples: bool) -> String {
+    let bound = if cells > MAX_GRID_CELLS {
+        format!("the {} a grid holds", Count(MAX_GRID_CELLS, "cell"))
+    } else {
+        format!("the page's {}", Count(max, "pose"))
+    };
+    let fewer = "give fewer values with --samples (one value of an input, its --from equal to its --to, fixes it)";
+    let advice = match (samples, cells <= MAX_GRID_CELLS) {
+        (true, true) => format!("fewer --samples, or --frames {cells} or more"),
+        (false, true) => {
+            format!("give --frames {cells} or more (the default grid has two values of each input at least)")
+        }
+        (true, false) => format!("{fewer}; more --frames do not raise it"),
+        (false, false) => format!("{fewer}: the default grid has two values of each input at least"),
+    };
+    format!("a grid of {} is more than {bound}: {advice}", Count(cells, "cell"))
 }
 
 /// The ends and counts of each input of a grid agree: several values between equal ends, or

@@ -436,6 +436,29 @@ fn too_many_cells_is_refused_before_solving() {
     );
 }
 
+/// The advice for too many cells works when followed: more `--frames` raise the page's bound,
+/// never the 100,000 cells a grid holds, so past those the advice is fewer values (it said "more
+/// --frames", and `--frames 160000` was then refused by the grid); within them it names the
+/// frames that fit, and a grid given them is solved.
+#[test]
+fn too_many_cells_advice_works_when_followed() {
+    let path = out("too_many_cells_advice.html");
+    let p = path.display().to_string();
+    let five = shipped("five_bar.kl");
+    let args = |extra: &[&'static str]| {
+        let base = ["animate", five.as_str(), "--grid", "--from", "0,0.4", "--to", "3,3", "--params", "b=0.1,c=0.1"];
+        base.into_iter().chain(extra.iter().copied()).chain(["--out", p.as_str()]).collect::<Vec<&str>>()
+    };
+    let beyond = "a grid of 160000 cells is more than the 100000 cells a grid holds: give fewer values with --samples";
+    fails_without_output(&args(&["--samples", "400"]), &path, 2, beyond);
+    fails_without_output(&args(&["--samples", "400", "--frames", "160000"]), &path, 2, beyond);
+    let within = "a grid of 900 cells is more than the page's 721 poses: fewer --samples, or --frames 900 or more";
+    fails_without_output(&args(&["--samples", "30"]), &path, 2, within);
+    // Followed, the grid fits: its cells are solved (and fail there, the five-bar's links
+    // reaching nowhere: exit code 1, not a usage error).
+    fails_without_output(&args(&["--samples", "30", "--frames", "900"]), &path, 1, "FiveBar");
+}
+
 /// `--grid` is for a mechanism of several inputs, drawn as a page; its counts are one per input
 /// or one for all: anything else is a usage error (2) that writes nothing.
 #[test]
