@@ -541,3 +541,19 @@ fn the_cam_s_inputs_in_degrees_are_the_decimals_from_the_start() {
         assert_eq!(row[0], want, "sample {k}");
     }
 }
+
+/// A follower's point that turns with the cam (a point on the input's crank, its rocker's pivot
+/// the cam's) does not move relative to the cam: refused naming its velocity there as the
+/// command writes its other numbers, `(0, 0)`, not in Rust's debug format, `[0.0, 0.0]`.
+#[test]
+fn a_point_turning_with_the_cam_names_its_velocity_as_numbers_are_written() {
+    let file = std::env::temp_dir().join(format!("kinloop-cam-spin-{}.kl", std::process::id()));
+    std::fs::write(&file, "pub struct Spin {\n    params r = 1;\n    input phi;\n    point p = r @ phi;\n}\n")
+        .expect("write the declaration");
+    let out = kinloop(&["cam", &file.display().to_string(), "--point", "p", "--rocker", "0,0"]);
+    let err = stderr(&out);
+    let _ = std::fs::remove_file(&file);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("does not move around the cam's centre (r' = (0, 0) relative to the cam)"), "{err}");
+    assert!(!err.contains("[0.0") && out.stdout.is_empty(), "{err}");
+}

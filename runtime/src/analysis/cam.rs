@@ -240,10 +240,14 @@ pub fn cam_profile(samples: &[FollowerSample], pivot: [f64; 2], roller: f64) -> 
         let turn = cross(qs, dr);
         let speed = norm(dr);
         if turn == 0.0 || speed == 0.0 {
+            // The velocity as every other number of a message is written (`(0, 0)`, not Rust's
+            // `[0.0, 0.0]`).
+            let [vx, vy] = scale(unit, dr);
             return bad(format!(
-                "at sample {k} the follower's point does not move around the cam's centre (r' = {:?} relative to \
-                 the cam): the pitch curve must wind around it",
-                scale(unit, dr)
+                "at sample {k} the follower's point does not move around the cam's centre (r' = ({}, {}) relative \
+                 to the cam): the pitch curve must wind around it",
+                Number(vx),
+                Number(vy)
             ));
         }
         if winding == 0.0 {
