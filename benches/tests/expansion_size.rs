@@ -1,8 +1,11 @@
-//! The generated code stays lean: a four-bar with a coupler point expands to at most 620
+//! The generated code stays lean: a four-bar with a coupler point expands to at most 690
 //! formatted lines without parameter sensitivities, and grows linearly with the number of loops,
 //! in series and in a ring (one coupled sparse block). (The bound was 600 until `position_flat`
 //! was rescued at extreme sizes as `kinematics_flat` is: the closure that hands its kernel's
-//! failure to the rescue, and the same kernel indented one level deeper, are 15 lines: 599 -> 614.)
+//! failure to the rescue, and the same kernel indented one level deeper, are 15 lines: 599 -> 614.
+//! It was 620 until the expansion named the derived traits and the primitive types by their
+//! paths, `::core::primitive::f64`, so that a module without the prelude or with its own `f64`
+//! compiles it: the same code, its longer lines wrapped by the formatter, 619 -> 686.)
 
 use kinloop_bench::expansion::{four_bar_chain, four_bar_ring, size};
 
@@ -18,10 +21,10 @@ const COUPLER_FOUR_BAR: &str = "
 ";
 
 #[test]
-fn a_four_bar_with_a_coupler_point_expands_to_at_most_620_lines() {
+fn a_four_bar_with_a_coupler_point_expands_to_at_most_690_lines() {
     let lean = size(COUPLER_FOUR_BAR);
     println!("four-bar with a coupler point: {} lines, {} token trees", lean.lines, lean.tokens);
-    assert!(lean.lines <= 620, "{} lines", lean.lines);
+    assert!(lean.lines <= 690, "{} lines", lean.lines);
     let with_sens = size(&COUPLER_FOUR_BAR.replace("/// Four-bar", "#[kinloop(sensitivities)]\n/// Four-bar"));
     println!("with sensitivities: {} lines", with_sens.lines);
     assert!(with_sens.lines > lean.lines, "sensitivities are generated only on request");
