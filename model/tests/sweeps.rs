@@ -376,3 +376,30 @@ fn a_model_s_sweep_configuration_reaches_its_sweeps_and_analyses() {
         assert_eq!(m.sweep_config().singular_pivot, 1e-12);
     }
 }
+
+/// A run-time model's sweep collects under the runtime's memory budget, its states counted
+/// with the arrays they hold on the heap: a sweep whose states' own size fits the budget but
+/// whose arrays do not is refused by `run` before any step (and one of the most samples by
+/// `table`); iterated, it steps.
+#[test]
+fn collecting_a_model_sweep_counts_its_states_arrays() {
+    use kinloop_runtime::dims::KinState;
+    use kinloop_runtime::paths::collected::MAX_COLLECTED_BYTES;
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let g = [0.6, 1.9];
+    let first = model.sweep(&[0.0], &[TAU], 2, &g).unwrap().next().unwrap().unwrap();
+    let (own, heap) = (size_of::<KinBuf>(), first.heap_bytes());
+    assert!(heap > 0);
+    let samples = MAX_COLLECTED_BYTES / own;
+    assert!(samples * (own + heap) > MAX_COLLECTED_BYTES);
+    let run = model.sweep(&[0.0], &[TAU], samples, &g).unwrap().run();
+    assert!(run.states.is_empty());
+    let err = run.into_result().expect_err("beyond the budget");
+    assert!(err.to_string().contains(&format!("{samples} states of {} bytes", own + heap)), "{err}");
+    // A row is smaller than a state: the table is refused at the most samples a sweep takes.
+    let most = kinloop::analysis::MAX_SAMPLES + 1;
+    assert!(model.sweep(&[0.0], &[TAU], most, &g).unwrap().table().is_err());
+    assert_eq!(model.sweep(&[0.0], &[TAU], samples, &g).unwrap().take(3).filter(Result::is_ok).count(), 3);
+    assert_eq!(model.sweep(&[0.0], &[TAU], 37, &g).unwrap().table().unwrap().rows.len(), 37);
+}

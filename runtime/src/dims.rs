@@ -132,6 +132,12 @@ pub trait KinState: Clone + fmt::Debug {
     /// The state as one table row, in the order of the table's columns (see
     /// [`Table::kin_row`](crate::Table::kin_row)).
     fn table_row(&self) -> Vec<f64>;
+    /// The bytes the state holds beyond its own `size_of` (on the heap): with it, what keeping
+    /// the state costs (a sweep's `run` budgets its states by it). None for [`Kin`], whose arrays
+    /// are inline.
+    fn heap_bytes(&self) -> usize {
+        0
+    }
 }
 
 impl<const N: usize, const NI: usize, const NO: usize> KinState for Kin<N, NI, NO> {
@@ -265,6 +271,10 @@ impl KinState for KinBuf {
             &self.x,
             [(&self.q, &self.dq, &self.d2q), (&self.out, &self.dout, &self.d2out)],
         )
+    }
+    fn heap_bytes(&self) -> usize {
+        let values = [&self.x, &self.q, &self.dq, &self.d2q, &self.out, &self.dout, &self.d2out].map(|v| v.len());
+        values.iter().sum::<usize>() * size_of::<f64>()
     }
 }
 

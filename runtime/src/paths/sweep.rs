@@ -55,8 +55,12 @@
 //! far out, finely sampled), a step that fails there is [`Error::InputTooCoarse`], naming the
 //! input: its steps' inputs round away from where they are predicted.
 //!
-//! The iterator allocates nothing per step (events are rare and allocate).
+//! The iterator allocates nothing per step (events are rare and allocate). Its collecting
+//! methods, [`SweepOf::run`] and [`SweepOf::table`], keep every state, and refuse up front a
+//! sweep whose states would exceed
+//! [`MAX_COLLECTED_BYTES`](super::collected::MAX_COLLECTED_BYTES); iterating has no such bound.
 
+use super::collected::check_collected;
 use super::config::{AtSingular, SweepConfig};
 use super::crossing;
 use super::curve::{self, CurvePoint, Metric, Path};
@@ -493,7 +497,18 @@ where
 
     /// Runs the whole sweep: the states up to where it ended, why and where it ended, and the
     /// singular positions met (see [`SweepResult`]).
+    ///
+    /// Every state is kept: a sweep whose remaining samples' states would take more than
+    /// [`MAX_COLLECTED_BYTES`](super::collected::MAX_COLLECTED_BYTES) (1 GiB) is refused before
+    /// any step, its result empty and stopped by an [`Error::InvalidArgument`] with the numbers
+    /// (where the allocation would abort the process). Iterate such a sweep instead (`for s in
+    /// sweep`, or a fold), which keeps only what the caller keeps and has no such bound, or take
+    /// fewer samples.
     pub fn run(mut self) -> SweepResult<S> {
+        let bytes_each = size_of::<S>() + self.cur().heap_bytes();
+        if let Err(e) = check_collected("`run()`", "states", self.samples - self.next, bytes_each) {
+            return SweepResult::new(Vec::new(), Some(e), Vec::new());
+        }
         // Bounded: a sweep of a huge sample count grows its vector as it goes.
         let mut states = Vec::with_capacity(self.samples.min(1 << 16));
         let mut error = None;
@@ -511,8 +526,17 @@ where
 
     /// Runs the whole sweep into a [`Table`] (CSV-ready, named columns, inferred units: see
     /// [`Table::with_units_of`]).
+    ///
+    /// Every row is kept: a sweep whose remaining samples' rows would take more than
+    /// [`MAX_COLLECTED_BYTES`](super::collected::MAX_COLLECTED_BYTES) (1 GiB) is an
+    /// [`Error::InvalidArgument`] with the numbers, before any step. Iterate such a sweep instead
+    /// (`for s in sweep`, writing each row as it comes), or take fewer samples.
     pub fn table(mut self) -> Result<Table, Error> {
-        let mut t = Table::new(Table::kernel_columns(&self.m));
+        let columns = Table::kernel_columns(&self.m);
+        // A row is its own vector: the values and the vector's header.
+        let bytes_each = size_of::<Vec<f64>>() + columns.len() * size_of::<f64>();
+        check_collected("`table()`", "rows", self.samples - self.next, bytes_each)?;
+        let mut t = Table::new(columns);
         while let Some(k) = self.next_ref() {
             t.push(k?.table_row());
         }
@@ -1390,6 +1414,45 @@ mod tests {
         for (a, b) in owned.iter().zip(&lent) {
             assert_eq!((a.x, a.q, a.dq, a.d2q, a.out), (b.x, b.q, b.dq, b.d2q, b.out));
         }
+    }
+
+    /// A sweep of `10^8` intervals (allowed: `analysis::MAX_SAMPLES`) whose states would take
+    /// tens of GB is refused by `run` and `table` before any step, saying so and what to do;
+    /// iterated, the same sweep steps.
+    #[test]
+    fn collecting_a_sweep_beyond_the_memory_budget_is_refused_up_front() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let g = m.guess_flat(&[0.0]);
+        let samples = crate::analysis::MAX_SAMPLES + 1;
+        let sweep = || Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [6.0], samples, g).unwrap();
+        let run = sweep().run();
+        assert!(run.states.is_empty() && run.events.is_empty());
+        let err = run.into_result().expect_err("refused");
+        let msg = err.to_string();
+        assert!(matches!(err, Error::InvalidArgument(_)), "{err:?}");
+        let each = size_of::<Kin<1, 1, 1>>();
+        for what in [format!("{samples} states of {each} bytes"), "`for s in sweep`".into(), "fewer samples".into()] {
+            assert!(msg.contains(&what), "{what:?} not in {msg}");
+        }
+        let err = sweep().table().expect_err("refused");
+        assert!(matches!(&err, Error::InvalidArgument(msg) if msg.contains(&format!("{samples} rows"))), "{err}");
+        // Streaming is not bounded by the budget.
+        let first: Vec<_> = sweep().take(3).map(Result::unwrap).collect();
+        assert_eq!(first.len(), 3);
+        // Once most of a sweep is iterated, what remains is collected.
+        let mut s = Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [6.0], 201, g).unwrap();
+        s.by_ref().take(101).for_each(|k| assert!(k.is_ok()));
+        assert_eq!(s.run().into_result().unwrap().len(), 100);
+    }
+
+    /// Under the budget a sweep collects every sample, into states and into a table.
+    #[test]
+    fn a_sweep_within_the_memory_budget_collects() {
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let g = m.guess_flat(&[0.0]);
+        let sweep = || Sweep::<_, Kin<1, 1, 1>, 1, 1, 1>::new(&m, [0.0], [6.0], 200, g).unwrap();
+        assert_eq!(sweep().run().into_result().unwrap().len(), 200);
+        assert_eq!(sweep().table().unwrap().rows.len(), 200);
     }
 
     /// Beyond 256 blocks a change of assembly mode could go unseen: such a sweep is refused.
