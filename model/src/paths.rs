@@ -80,7 +80,8 @@ impl Model {
     /// and from the first that solves the stretch reachable on its assembly mode, a turn each
     /// way: the runtime's
     /// `assembly_near` over this model (see [`assembly_near_of`]), with the model's solver
-    /// configuration ([`Model::sweep_config`]). `None` where no sample solves.
+    /// configuration ([`Model::sweep_config`]). `None` where no sample solves, unless some ran out
+    /// of iterations: then that `Error::NoConvergence` (the search cannot tell).
     ///
     /// ```
     /// use kinloop_model::Model;
@@ -108,7 +109,9 @@ impl Model {
     /// of inputs: point solves from the declared guess at `from` and at `samples` equally spaced
     /// inputs up to `to`, the entry located between the last that fails and the first that
     /// solves; the runtime's `assembly_along` over this model (see [`assembly_along_of`]), with
-    /// the model's solver configuration ([`Model::sweep_config`]). `None` where no sample solves.
+    /// the model's solver configuration ([`Model::sweep_config`]). `None` where no sample solves,
+    /// unless some ran out of iterations: then that `Error::NoConvergence` (the search cannot
+    /// tell).
     pub fn assembly_along(
         &mut self,
         from: &[f64],
@@ -141,7 +144,8 @@ impl Model {
     /// [`assembly_modes_of`]), with the
     /// model's solver configuration. `Error::InvalidArgument` for an `x` of another size than
     /// the model's inputs, `Error::NonFinite` for an input or a parameter not finite,
-    /// `Error::Singular` at a limit position (where the modes meet).
+    /// `Error::Singular` at a limit position (where the modes meet), `Error::NoConvergence` where
+    /// no start solves and some ran out of iterations (the search cannot tell).
     pub fn assembly_modes(&mut self, x: &[f64]) -> Result<Vec<KinBuf>, Error> {
         if x.len() != self.inputs().len() {
             return Err(Error::InvalidArgument(format!(

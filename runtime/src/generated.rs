@@ -456,7 +456,8 @@ macro_rules! __named_api {
             /// The distinct assembly modes at `input` (multi-start Newton; see
             /// [`Named::assembly_modes`](::kinloop::Named::assembly_modes)), e.g. to pick "elbow up" with
             /// `.into_iter().find(|s| ...)`. Empty where the links cannot close; an error for an
-            /// input or a parameter not finite, and `Error::Singular` at a limit position.
+            /// input or a parameter not finite, `Error::Singular` at a limit position, and
+            /// `Error::NoConvergence` where no start solves and some ran out of iterations.
             pub fn assembly_modes(
                 &self,
                 input: impl ::core::convert::Into<$inputs>,
@@ -466,7 +467,8 @@ macro_rules! __named_api {
 
             /// Where a mechanism of one angle input assembles nearest `at`, where it may not:
             /// the stretch between its limit positions, or `None` where its loops close nowhere
-            /// on the turn (see [`Named::assembly_near`](::kinloop::Named::assembly_near)).
+            /// on the turn (`Error::NoConvergence` where no sample solves and some ran out of
+            /// iterations; see [`Named::assembly_near`](::kinloop::Named::assembly_near)).
             pub fn assembly_near(
                 &self,
                 at: impl ::core::convert::Into<$inputs>,

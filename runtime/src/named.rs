@@ -190,7 +190,8 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// near, the greater), and from the first that solves the stretch reachable on its assembly
     /// mode (see
     /// [`assembly_near`](crate::paths::assembles::assembly_near)). `None` where the loops close
-    /// nowhere on the turn from the declared guess.
+    /// nowhere on the turn from the declared guess; `Error::NoConvergence` where no sample solves
+    /// and some ran out of iterations (the search cannot tell).
     fn assembly_near(&self, at: impl Into<Self::Inputs>) -> Result<Option<Assembly<Self::Inputs>>, Error> {
         let near = assembly_near(self, at.into().into(), ASSEMBLY_SAMPLES)?;
         Ok(near.map(|a| a.map_inputs(Self::Inputs::from)))
@@ -211,8 +212,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// The distinct assembly modes at `input` (multi-start Newton; see
     /// [`assembly_modes`](crate::paths::modes::assembly_modes)), e.g. to pick "elbow up" with
     /// `.into_iter().find(|s| ...)`. Empty where the links cannot close; an error for an input
-    /// or a parameter not finite, and `Error::Singular` at a limit position (where the modes
-    /// meet).
+    /// or a parameter not finite, `Error::Singular` at a limit position (where the modes meet),
+    /// and `Error::NoConvergence` where no start solves and some ran out of iterations (the
+    /// search cannot tell).
     fn assembly_modes(&self, input: impl Into<Self::Inputs>) -> Result<Vec<Self::State>, Error> {
         let x: [f64; NI] = input.into().into();
         Ok(assembly_modes(self, &x, 64, &self.solver_config().newton)?.into_iter().map(Self::State::from).collect())

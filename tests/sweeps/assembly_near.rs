@@ -3,14 +3,14 @@
 //! stretched out or folded: the distance from the crank pin to the rocker's pivot equals their
 //! sum or difference), at several sizes, by closed forms and by Newton's method.
 
-use kinloop::Error;
 use kinloop::paths::assembles::{ASSEMBLY_SAMPLES, assembly_along, assembly_near};
+use kinloop::{Error, Named, NewtonConfig};
 use kinloop_fixtures::{FiveBar, FourBar};
 use std::f64::consts::{PI, TAU};
 
 use crate::support::{four_bar_limit, tol};
-// The four-bar solved by Newton's method: a far guess fails to converge rather than to
-// assemble, which the search counts as not assembling there.
+// The four-bar solved by Newton's method: a far guess may fail to converge rather than to
+// assemble, which the search counts as not assembling there (unless no sample solves).
 use crate::sweep_api::NewtonFourBar;
 
 kinloop::mechanism! {
@@ -120,6 +120,44 @@ fn links_that_close_nowhere_are_none() {
     let m = FourBar { a: 1.0, b: 3.0, c: 2.5, d: 10.0 };
     assert_eq!(assembly_near(&m, [0.0], 360).unwrap(), None);
     assert_eq!(m.assembly_near(2.0).unwrap(), None);
+}
+
+/// Newton's method far from any position stalls and says the loops cannot close (`NoAssembly`):
+/// links that close nowhere, or an input beyond a rocker's limit, are still "nowhere" (`None`,
+/// no mode), not the error of a search that cannot tell.
+#[test]
+fn links_that_close_nowhere_by_newton_are_none() {
+    for d in [6.6, 10.0, 1e3] {
+        let m = NewtonFourBar { a: 1.0, b: 3.0, c: 2.5, d };
+        for at in [0.0, 1.0, 2.0, 3.0, -2.5] {
+            assert_eq!(assembly_near(&m, [at], 360).unwrap(), None, "d {d}, at {at}");
+            assert!(m.assembly_modes(at).unwrap().is_empty(), "d {d}, at {at}");
+        }
+        assert_eq!(assembly_along(&m, [0.0], [6.0], 100).unwrap(), None, "d {d}");
+    }
+    let rocker = NewtonFourBar { a: 1.0, b: 2.5, c: 1.5, d: 3.2 };
+    assert!(rocker.assembly_modes(3.1).unwrap().is_empty());
+    assert_eq!(assembly_along(&rocker, [2.5], [3.8], 100).unwrap(), None);
+}
+
+/// A four-bar that assembles at every input, its Newton solves allowed 0 to 2 iterations: no
+/// solve succeeds, and the searches answered "nowhere" (no mode, `None`), which is wrong and
+/// says nothing of the settings. They now say they cannot tell: the solves' `NoConvergence`,
+/// naming the iterations.
+#[test]
+fn a_solver_too_tight_to_tell_is_an_error_not_nowhere() {
+    let m = NewtonFourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    assert!(m.assembly_near(0.4).unwrap().is_some() && m.assembly_modes(0.4).unwrap().len() == 2);
+    for iterations in 0..=2 {
+        let tight = m.with_config(NewtonConfig::default().with_max_iterations(iterations)).unwrap();
+        let no_convergence = |what: &str, e: Error| {
+            assert!(matches!(e, Error::NoConvergence { .. }), "{iterations} iterations, {what}: {e:?}");
+            assert!(e.to_string().contains("max_iterations"), "{e}");
+        };
+        no_convergence("modes", tight.assembly_modes(0.4).expect_err("cannot tell"));
+        no_convergence("near", assembly_near(&tight, [0.4], 360).expect_err("cannot tell"));
+        no_convergence("along", assembly_along(&tight, [0.0], [1.0], 10).expect_err("cannot tell"));
+    }
 }
 
 #[test]

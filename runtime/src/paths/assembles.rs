@@ -63,11 +63,19 @@ impl<X> Assembly<X> {
 /// and where a sweep cannot start from the position solved ([`Error::NearSingular`],
 /// [`Error::SingularStart`]: nearer a singular position than a sweep accepts).
 ///
+/// But where no sample is a start and some solve ran out of iterations, the search cannot tell
+/// a mechanism that assembles nowhere from a solver configured too tightly to find where it
+/// does (a `max_iterations` of 0 to 2 fails every solve of a four-bar that assembles
+/// everywhere): the answer is then the first such [`Error::NoConvergence`], naming the
+/// iterations, not `None`. Links that close nowhere fail as [`Error::NoAssembly`] (a closed
+/// form's test, or Newton's stalled residual), and stay `None`.
+///
 /// Errors: a mechanism of other than one input, or whose input is not an angle, fewer than 2
 /// or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples, an input so large that
 /// the samples' spacing rounds away ([`Error::InvalidArgument`]); `at` not finite
-/// ([`Error::NonFinite`]); any other error of a point solve (a declared expression that leaves
-/// its domain) or of the sweeps.
+/// ([`Error::NonFinite`]); [`Error::NoConvergence`] where no sample is a start and some solve
+/// ran out of iterations (above); any other error of a point solve (a declared expression that
+/// leaves its domain) or of the sweeps.
 pub fn assembly_near<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     at: [f64; NI],
@@ -121,9 +129,10 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
     // Nearest first: `at`, then one spacing each way, two, ... up to half a turn each way; the
     // side above `at` first, the documented tie-break between two samples as near.
     let offsets = std::iter::once(0.0).chain((1..=samples / 2).flat_map(|j| [j as f64, -(j as f64)]));
+    let mut undecided = None;
     for j in offsets {
         let x = input(x0 + j * spacing);
-        let Some(q) = solved(m, &x, &cfg.newton)? else { continue };
+        let Some(q) = solved(m, &x, &cfg.newton, &mut undecided)? else { continue };
         // A turn each way: a linkage's stretch between two limit positions is shorter than that,
         // and one that reaches both ends turns fully.
         match reachable_of(m, x.clone(), input(TAU), q, samples / 2 + 1) {
@@ -134,21 +143,42 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
             Err(e) => return Err(e),
         }
     }
-    Ok(None)
+    nowhere(undecided)
 }
 
 /// The positions at `x` solved from the declared guess, or `None` where the mechanism does not
 /// assemble there as the searches count it: the solve fails with [`Error::NoAssembly`],
-/// [`Error::NoConvergence`] or [`Error::Singular`]. Any other error is returned.
-fn solved<K: Kernel>(m: &K, x: &X<K>, cfg: &NewtonConfig) -> Result<Option<Q<K>>, Error> {
+/// [`Error::NoConvergence`] or [`Error::Singular`]. The first `NoConvergence` is kept in
+/// `undecided` (see [`nowhere`]); any other error is returned.
+fn solved<K: Kernel>(
+    m: &K,
+    x: &X<K>,
+    cfg: &NewtonConfig,
+    undecided: &mut Option<Error>,
+) -> Result<Option<Q<K>>, Error> {
     let mut q = m.guess(x);
     match m.kinematics(x, &q, cfg) {
         Ok(k) => {
             q.as_mut().copy_from_slice(k.q());
             Ok(Some(q))
         }
-        Err(Error::NoAssembly { .. } | Error::NoConvergence { .. } | Error::Singular { .. }) => Ok(None),
+        Err(e @ Error::NoConvergence { .. }) => {
+            undecided.get_or_insert(e);
+            Ok(None)
+        }
+        Err(Error::NoAssembly { .. } | Error::Singular { .. }) => Ok(None),
         Err(e) => Err(e),
+    }
+}
+
+/// A search's answer where no sample was found: `None` (the mechanism assembles nowhere it
+/// looked), unless a solve ran out of iterations (`undecided`, its [`Error::NoConvergence`]):
+/// then the search cannot tell "nowhere" from a solver configured too tightly to find it, and
+/// says so with that error rather than answer "nowhere".
+fn nowhere<T>(undecided: Option<Error>) -> Result<Option<T>, Error> {
+    match undecided {
+        Some(e) => Err(e),
+        None => Ok(None),
     }
 }
 
@@ -183,7 +213,9 @@ pub struct PathEntry<X> {
 /// samples' spacing). A compiled mechanism's [`assembly_along_of`] (through [`Compiled`]).
 ///
 /// A sample counts as not assembling where its solve fails with [`Error::NoAssembly`],
-/// [`Error::NoConvergence`] or [`Error::Singular`]; any other error is returned.
+/// [`Error::NoConvergence`] or [`Error::Singular`]; any other error is returned. Where no
+/// sample solves and some solve ran out of iterations, the answer is that
+/// [`Error::NoConvergence`], not `None`, as for [`assembly_near`].
 ///
 /// Errors: fewer than 1 or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples,
 /// `from` equal to `to`, ends so far apart that `to - from` overflows
@@ -229,7 +261,8 @@ pub fn assembly_along_of<K: Kernel>(
             "assembly_along: `to - from` overflows (beyond the largest double): give nearer ends of the path".into(),
         ));
     }
-    let solves = |tau: f64| Ok::<_, Error>(solved(m, &path.at_tau(tau), &cfg.newton)?.is_some());
+    let mut undecided = None;
+    let mut solves = |tau: f64| Ok::<_, Error>(solved(m, &path.at_tau(tau), &cfg.newton, &mut undecided)?.is_some());
     let mut before = 0.0;
     for k in 0..=samples {
         let tau = k as f64 / samples as f64;
@@ -252,5 +285,5 @@ pub fn assembly_along_of<K: Kernel>(
         }
         return Ok(Some(PathEntry { fraction: hi, at: path.at_tau(hi), sample: path.at_tau(tau) }));
     }
-    Ok(None)
+    nowhere(undecided)
 }

@@ -35,9 +35,13 @@ fn turn_distance(a: f64, b: f64) -> f64 {
 /// Empty where no start solves (the links cannot close at `x`: no mode). Errors, not an empty
 /// list: an input or a parameter NaN or infinite ([`Error::NonFinite`], which every start
 /// would meet), an invalid `cfg` or more `starts` than
-/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) ([`Error::InvalidArgument`]), and
+/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) ([`Error::InvalidArgument`]),
 /// [`Error::Singular`] where the only positions found are singular (`x` at a limit position,
-/// where two modes meet: the links close there, but in no mode a sweep can leave).
+/// where two modes meet: the links close there, but in no mode a sweep can leave), and
+/// [`Error::NoConvergence`] (the first start's that ran out of iterations) where no start
+/// solves and some ran out of `cfg.max_iterations`: the search cannot then tell links that
+/// close nowhere (which fail as [`Error::NoAssembly`]) from a configuration too tight to solve
+/// (a `max_iterations` of 0 to 2 fails every start of a four-bar that assembles).
 ///
 /// A compiled mechanism's [`assembly_modes_of`] (through [`Compiled`]).
 pub fn assembly_modes<M, const N: usize, const NI: usize, const NO: usize>(
@@ -106,6 +110,8 @@ pub fn assembly_modes_of<K: Kernel>(
     };
     // The first singular position a start reached: the answer where no start finds a mode.
     let mut singular: Option<Error> = None;
+    // The first start that ran out of iterations: otherwise the answer where none finds a mode.
+    let mut undecided: Option<Error> = None;
     let mut try_start = |g: &Q<K>, found: &mut Vec<KinOf<K>>| -> Result<(), Error> {
         match m.kinematics(x, g, cfg) {
             Ok(k) => {
@@ -122,6 +128,10 @@ pub fn assembly_modes_of<K: Kernel>(
             Err(e @ Error::NonFinite { .. }) => Err(e),
             Err(e @ Error::Singular { .. }) => {
                 singular.get_or_insert(e);
+                Ok(())
+            }
+            Err(e @ Error::NoConvergence { .. }) => {
+                undecided.get_or_insert(e);
                 Ok(())
             }
             Err(_) => Ok(()),
@@ -155,7 +165,7 @@ pub fn assembly_modes_of<K: Kernel>(
         try_start(&g, &mut found)?;
     }
     if found.is_empty()
-        && let Some(e) = singular
+        && let Some(e) = singular.or(undecided)
     {
         return Err(e);
     }
