@@ -102,6 +102,9 @@ declared! {
 fn step_kernel(text: &str) -> String {
     let code: String = kinloop_codegen::expand(text.parse().expect("tokens")).to_string();
     let code: String = code.chars().filter(|c| !c.is_whitespace()).collect();
+    // The expansion names `f64` by its path (a module's own `f64` cannot shadow it); the
+    // statements below are written with the short name.
+    let code = code.replace("::core::primitive::f64", "f64");
     let from = code.find("fnkinematics_step_sink").expect("a step kernel");
     let to = from + code[from..].find("fnkinematics_flat").expect("followed by kinematics_flat");
     code[from..to].to_string()
