@@ -12,6 +12,7 @@ use crate::events::EventKind;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
+use crate::paths::collected::check_collected;
 use crate::paths::config::SweepConfig;
 use crate::paths::curve::{Metric, Path};
 use crate::paths::sweep::{MAX_INPUT_STEP, SweepOf};
@@ -137,6 +138,30 @@ fn least_search_samples(natural: f64) -> usize {
     (l.ceil() as usize + 1).max(3)
 }
 
+/// About the bytes a [`SampledOf`] over `k` keeps per sample, and that its analyses hold per
+/// sample beside it while they search: the state (its own size and what it holds on the heap)
+/// and its path parameter, then a search's grid entry (a state's size, borrowed or not) and
+/// parameter, and a column's jet. What [`check_sampled_memory`] budgets.
+fn sampled_bytes_each<K: Kernel>(k: &K) -> usize {
+    fn grid_entry<'a, T: Clone + 'a>() -> usize {
+        size_of::<Cow<'a, T>>()
+    }
+    let state = size_of::<KinOf<K>>() + k.dims().kin().heap_bytes();
+    state + size_of::<f64>() + grid_entry::<KinOf<K>>() + size_of::<f64>() + size_of::<Jet>()
+}
+
+/// `Err(Error::InvalidArgument)` when a [`SampledOf`] of `samples` samples over `k` would keep
+/// more than [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES) (with what its
+/// analyses hold beside it, [`sampled_bytes_each`]), before any step: its states are kept until
+/// it is dropped, and a failed allocation aborts the process. `what` is what the caller called,
+/// in words (the sampled sweep, or an analysis that keeps one: "the limit search").
+pub(crate) fn check_sampled_memory<K: Kernel>(k: &K, samples: usize, what: &str) -> Result<(), Error> {
+    let instead = "take fewer samples (the analyses solve the points between samples farther apart than a sweep's \
+                   natural step themselves: `analysis::samples_to_search` gives the fewest that search a range), or \
+                   iterate a `Sweep` and keep only what you need";
+    check_collected(what, "states", samples, sampled_bytes_each(k), instead)
+}
+
 /// The points where a search for extremes looks ([`SampledOf::search`]): the samples,
 /// borrowed, and the points solved between those farther apart than a sweep's natural step.
 struct Search<'a, K: Kernel> {
@@ -192,6 +217,12 @@ pub type Sampled<'m, M, const N: usize, const NO: usize, const NI: usize = 1> = 
 ///   `to`, `s` is the fraction of the path (0 at `from`, 1 at `to`), or one chosen input after
 ///   [`SampledOf::along`]; the derivatives along the path are the analog tensors contracted with
 ///   the path's direction `d` (`dq/ds = dq[u][i] d_i`, `d2q/ds2 = d2q[u][i][j] d_i d_j`).
+///
+/// Every state is kept, and the analyses hold about as much again while they search: samples
+/// whose states would exceed [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES)
+/// (1 GiB) are refused before any step, with the numbers (at a few hundred bytes a state, a few
+/// million samples; the analyses solve the points between samples farther apart than a sweep's
+/// natural step themselves, so that fewer samples lose no extreme).
 ///
 /// For [`SampledOf::fourier`] and [`SampledOf::unbalance`] the range must be one period of the
 /// quantity (e.g. one crank turn, `samples - 1` equal intervals, the last sample repeating the
@@ -250,7 +281,9 @@ where
     /// Sweeps `samples` equally spaced inputs from `from` to `to > from` (both included) from
     /// `guess` at `from` (which picks the assembly mode). The path parameter is the input.
     /// At least 3 and at most [`MAX_SAMPLES`](super::MAX_SAMPLES) samples (every state is
-    /// kept): others are an [`Error::InvalidArgument`], as a count whose states no memory holds.
+    /// kept): others are an [`Error::InvalidArgument`], as a count whose states no memory holds;
+    /// so, before any step, are samples whose states (with what the analyses hold beside them)
+    /// would exceed [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES).
     ///
     /// The mechanism's solver configuration ([`Mechanism::solver_config`]: the defaults, or the
     /// one a [`Configured`](crate::Configured) mechanism carries) sweeps and refines.
@@ -336,7 +369,8 @@ impl<K: Kernel> SampledOf<K> {
     /// (both included, of the kernel's sizes) from `guess` at `from`, with the sweep
     /// configuration `cfg` (also used for every refinement): the path parameter is the input
     /// when there is one (which must then increase), the fraction of the path otherwise (see
-    /// [`SampledOf::along`]).
+    /// [`SampledOf::along`]). The errors of [`Sampled::sweep`] (the samples' memory among
+    /// them).
     pub fn over(k: K, from: X<K>, to: X<K>, samples: usize, guess: Q<K>, cfg: SweepConfig) -> Result<Self, Error> {
         Self::over_reporting(k, from, to, samples, guess, cfg, |_| ())
     }
@@ -419,6 +453,7 @@ impl<K: Kernel> SampledOf<K> {
             )));
         }
         super::check_sample_count("samples", samples).map_err(Error::InvalidArgument)?;
+        check_sampled_memory(&k, samples, "the sampled sweep")?;
         let mut states = Vec::new();
         states
             .try_reserve_exact(samples)
@@ -1058,6 +1093,33 @@ impl<K: Kernel> SampledOf<K> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::analysis::demo::SliderCrank;
+    use crate::paths::collected::MAX_COLLECTED_BYTES;
+    use std::f64::consts::TAU;
+
+    /// Samples whose states would exceed the memory budget (a few million, well within
+    /// `MAX_SAMPLES`) are refused before any step, saying so and what to do: the guess, not a
+    /// number, fails the first step, so the refusal is the first thing done. At the budget the
+    /// sweep starts, and that first step's failure is the error. Without the budget such a count
+    /// was swept, every state kept, until memory ran out.
+    #[test]
+    fn a_sampled_sweep_beyond_the_memory_budget_is_refused_up_front() {
+        let m = SliderCrank { r: 1.0, l: 2.5, e: 0.7 };
+        let each = sampled_bytes_each(&Compiled(&m));
+        // The state is counted with what the analyses hold beside it.
+        assert!(each > 2 * size_of::<KinOf<Compiled<'_, SliderCrank, 1, 1, 1>>>(), "{each}");
+        let fits = MAX_COLLECTED_BYTES / each;
+        assert!(fits < crate::analysis::MAX_SAMPLES);
+        let err = Sampled::sweep(&m, 0.0, TAU, fits + 1, [f64::NAN]).expect_err("refused");
+        let msg = err.to_string();
+        assert!(matches!(err, Error::InvalidArgument(_)), "{err:?}");
+        let numbers = format!("the sampled sweep would keep {} states of {each} bytes", fits + 1);
+        for what in [numbers.as_str(), "fewer samples", "samples_to_search"] {
+            assert!(msg.contains(what), "{what:?} not in {msg}");
+        }
+        let err = Sampled::sweep(&m, 0.0, TAU, fits, [f64::NAN]).expect_err("a guess not a number");
+        assert!(!err.to_string().contains("would keep"), "{err}");
+    }
 
     /// The points a search solves between `g` equal gaps over `l` natural steps.
     fn between(l: f64, g: f64) -> f64 {

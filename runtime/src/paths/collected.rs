@@ -1,34 +1,39 @@
-//! The memory budget of a sweep's collecting methods ([`SweepOf::run`](super::sweep::SweepOf::run)
-//! and [`SweepOf::table`](super::sweep::SweepOf::table)), which keep every state, where iterating
-//! the sweep keeps none.
+//! The memory budget of what keeps one state (or row) per sample: a sweep's collecting methods
+//! ([`SweepOf::run`](super::sweep::SweepOf::run) and [`SweepOf::table`](super::sweep::SweepOf::table))
+//! and a [`SampledOf`](crate::analysis::SampledOf), where iterating a sweep keeps none.
 
 use crate::error::Error;
 
-/// The most bytes of states (or table rows) a sweep's collecting methods keep: 1 GiB, the order
-/// of a simulation's recording at its default step budget (0.96 GB, see
+/// The most bytes of states (or table rows) kept one per sample: 1 GiB, the order of a
+/// simulation's recording at its default step budget (0.96 GB, see
 /// [`OdeConfig::max_steps`](crate::dynamics::OdeConfig::max_steps)).
 ///
 /// A sweep may have up to [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) intervals, and a state
 /// takes a few hundred bytes: `run()` of `10^8` samples would ask for tens of GB, and a failed
-/// allocation aborts the process rather than returning an error. A sweep whose states would
-/// exceed this is refused by `run` and `table` before any step, saying what to do instead:
-/// iterate it (`for s in sweep`, or a fold), which keeps only what the caller keeps and is not
-/// bounded by this, or take fewer samples. The bound is on the states themselves; the vector
-/// holding them grows by doubling, as a `Vec` does.
+/// allocation aborts the process rather than returning an error. What would exceed this is
+/// refused before any step, saying what to do instead: a sweep's `run` and `table` (iterate it,
+/// `for s in sweep`, or a fold, which keeps only what the caller keeps and is not bounded by
+/// this, or take fewer samples), a sampled sweep (fewer samples). The bound is on the states
+/// themselves; the vector holding them grows by doubling, as a `Vec` does.
 pub const MAX_COLLECTED_BYTES: usize = 1 << 30;
 
-/// `Err(Error::InvalidArgument)` when `count` items of `bytes_each` bytes, kept by `what` (a
-/// method's name, such as "`run()`"), exceed [`MAX_COLLECTED_BYTES`]; the message gives the
-/// numbers and the alternatives.
-pub(crate) fn check_collected(what: &str, kept: &str, count: usize, bytes_each: usize) -> Result<(), Error> {
+/// `Err(Error::InvalidArgument)` when `count` items of `bytes_each` bytes, kept by `what` (what
+/// the caller called, in words: "the sweep's `run()`", "the limit search"), exceed
+/// [`MAX_COLLECTED_BYTES`]; the message gives the numbers and `instead`, what to do instead.
+pub(crate) fn check_collected(
+    what: &str,
+    kept: &str,
+    count: usize,
+    bytes_each: usize,
+    instead: &str,
+) -> Result<(), Error> {
     let total = count.saturating_mul(bytes_each);
     if total <= MAX_COLLECTED_BYTES {
         return Ok(());
     }
     Err(Error::InvalidArgument(format!(
-        "the sweep's {what} would keep {count} {kept} of {bytes_each} bytes ({:.1} GB), beyond the {} GiB a \
-         collected sweep may keep (`paths::collected::MAX_COLLECTED_BYTES`): iterate the sweep instead (`for s in \
-         sweep`, or a fold, keeps only what you keep), or take fewer samples",
+        "{what} would keep {count} {kept} of {bytes_each} bytes ({:.1} GB), beyond the {} GiB kept in memory at \
+         most (`paths::collected::MAX_COLLECTED_BYTES`): {instead}",
         total as f64 / 1e9,
         MAX_COLLECTED_BYTES >> 30,
     )))
@@ -42,9 +47,11 @@ mod tests {
     /// rather than wrapped into a small one.
     #[test]
     fn the_budget_is_inclusive_and_overflow_is_refused() {
-        assert!(check_collected("`run()`", "states", MAX_COLLECTED_BYTES / 8, 8).is_ok());
-        let err = check_collected("`run()`", "states", MAX_COLLECTED_BYTES / 8 + 1, 8).unwrap_err();
-        assert!(err.to_string().contains("134217729 states of 8 bytes"), "{err}");
-        assert!(check_collected("`run()`", "states", usize::MAX, 2).is_err());
+        let check = |count: usize, bytes_each: usize| check_collected("it", "states", count, bytes_each, "less");
+        assert!(check(MAX_COLLECTED_BYTES / 8, 8).is_ok());
+        let err = check(MAX_COLLECTED_BYTES / 8 + 1, 8).unwrap_err();
+        assert!(err.to_string().contains("it would keep 134217729 states of 8 bytes"), "{err}");
+        assert!(err.to_string().ends_with(": less"), "{err}");
+        assert!(check(usize::MAX, 2).is_err());
     }
 }

@@ -2,8 +2,8 @@
 //! by [`config`]) and their results with the reason they stopped ([`outcome`]), pseudo-arclength continuation through
 //! limit positions and kinks ([`curve`], [`trace`]), the states at given inputs ([`sweep_at`]), the reachable
 //! input range ([`reach`]) and where a mechanism assembles near an input ([`assembles`]), design-space
-//! scans ([`scan`]) and the search for assembly modes ([`modes`]); the memory a collected sweep may keep
-//! ([`collected`]).
+//! scans ([`scan`]) and the search for assembly modes ([`modes`]); the memory budget of what keeps a state per
+//! sample ([`collected`]).
 
 pub mod assembles;
 pub mod collected;

@@ -506,7 +506,10 @@ where
     /// fewer samples.
     pub fn run(mut self) -> SweepResult<S> {
         let bytes_each = size_of::<S>() + self.cur().heap_bytes();
-        if let Err(e) = check_collected("`run()`", "states", self.samples - self.next, bytes_each) {
+        let instead = "iterate the sweep instead (`for s in sweep`, or a fold, keeps only what you keep), or take fewer \
+                       samples";
+        let left = self.samples - self.next;
+        if let Err(e) = check_collected("the sweep's `run()`", "states", left, bytes_each, instead) {
             return SweepResult::new(Vec::new(), Some(e), Vec::new());
         }
         // Bounded: a sweep of a huge sample count grows its vector as it goes.
@@ -535,7 +538,9 @@ where
         let columns = Table::kernel_columns(&self.m);
         // A row is its own vector: the values and the vector's header.
         let bytes_each = size_of::<Vec<f64>>() + columns.len() * size_of::<f64>();
-        check_collected("`table()`", "rows", self.samples - self.next, bytes_each)?;
+        let instead =
+            "iterate the sweep instead (`for s in sweep`, writing each row as it comes), or take fewer samples";
+        check_collected("the sweep's `table()`", "rows", self.samples - self.next, bytes_each, instead)?;
         let mut t = Table::new(columns);
         while let Some(k) = self.next_ref() {
             t.push(k?.table_row());
