@@ -80,8 +80,9 @@ impl Model {
     /// and from the first that solves the stretch reachable on its assembly mode, a turn each
     /// way: the runtime's
     /// `assembly_near` over this model (see [`assembly_near_of`]), with the model's solver
-    /// configuration ([`Model::sweep_config`]). `None` where no sample solves, unless some ran out
-    /// of iterations: then that `Error::NoConvergence` (the search cannot tell).
+    /// configuration ([`Model::sweep_config`]). `None` where no sample solves; `Error::NoConvergence`
+    /// where a sample tried before the first that solves, or before none, ran out of iterations
+    /// (the search cannot tell whether it assembles).
     ///
     /// ```
     /// use kinloop_model::Model;
@@ -109,9 +110,9 @@ impl Model {
     /// of inputs: point solves from the declared guess at `from` and at `samples` equally spaced
     /// inputs up to `to`, the entry located between the last that fails and the first that
     /// solves; the runtime's `assembly_along` over this model (see [`assembly_along_of`]), with
-    /// the model's solver configuration ([`Model::sweep_config`]). `None` where no sample solves,
-    /// unless some ran out of iterations: then that `Error::NoConvergence` (the search cannot
-    /// tell).
+    /// the model's solver configuration ([`Model::sweep_config`]). `None` where no sample solves;
+    /// `Error::NoConvergence` where a sample before the first that solves, or before none, ran
+    /// out of iterations (the search cannot tell whether the path enters there).
     pub fn assembly_along(
         &mut self,
         from: &[f64],

@@ -190,8 +190,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// near, the greater), and from the first that solves the stretch reachable on its assembly
     /// mode (see
     /// [`assembly_near`](crate::paths::assembles::assembly_near)). `None` where the loops close
-    /// nowhere on the turn from the declared guess; `Error::NoConvergence` where no sample solves
-    /// and some ran out of iterations (the search cannot tell).
+    /// nowhere on the turn from the declared guess; `Error::NoConvergence` where a sample tried
+    /// before the first that solves, or before none, ran out of iterations (the search cannot
+    /// tell whether it assembles).
     fn assembly_near(&self, at: impl Into<Self::Inputs>) -> Result<Option<Assembly<Self::Inputs>>, Error> {
         let near = assembly_near(self, at.into().into(), ASSEMBLY_SAMPLES)?;
         Ok(near.map(|a| a.map_inputs(Self::Inputs::from)))

@@ -10,7 +10,8 @@ use std::f64::consts::{PI, TAU};
 
 use crate::support::{four_bar_limit, tol};
 // The four-bar solved by Newton's method: a far guess may fail to converge rather than to
-// assemble, which the search counts as not assembling there (unless no sample solves).
+// assemble, which tells nothing of whether it assembles there (an error where the search's
+// answer depends on it).
 use crate::sweep_api::NewtonFourBar;
 
 kinloop::mechanism! {
@@ -158,6 +159,32 @@ fn a_solver_too_tight_to_tell_is_an_error_not_nowhere() {
         no_convergence("near", assembly_near(&tight, [0.4], 360).expect_err("cannot tell"));
         no_convergence("along", assembly_along(&tight, [0.0], [1.0], 10).expect_err("cannot tell"));
     }
+}
+
+/// The same four-bar allowed 4 iterations solves from its declared guess only between about
+/// 20 and 113 degrees, though it assembles at every input: asked about 0, the search answered
+/// 20 degrees as "the nearest assembly", and the path from 0 entered at about 20 degrees. The
+/// nearer samples' solves ran out of iterations, which tells nothing of whether they assemble:
+/// the answer is their `NoConvergence`. Where the input itself solves, it is still the answer.
+#[test]
+fn a_nearer_sample_that_ran_out_of_iterations_is_an_error_not_a_farther_answer() {
+    let m = NewtonFourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.0 };
+    let tight = m.with_config(NewtonConfig::default().with_max_iterations(4)).unwrap();
+    let deg = |d: f64| d.to_radians();
+    // It assembles at 0 (by default), the tight solve there runs out, and one 20 degrees on solves.
+    assert!(m.position(0.0, &m.guess(0.0)).is_ok());
+    assert!(matches!(tight.position(0.0, &tight.guess(0.0)), Err(Error::NoConvergence { .. })));
+    assert!(tight.position(deg(20.0), &tight.guess(deg(20.0))).is_ok());
+    let no_convergence = |what: &str, e: Error| {
+        assert!(matches!(e, Error::NoConvergence { .. }), "{what}: {e:?}");
+        assert!(e.to_string().contains("max_iterations"), "{e}");
+    };
+    no_convergence("near", assembly_near(&tight, [0.0], 360).expect_err("cannot tell"));
+    no_convergence("along", assembly_along(&tight, [0.0], [1.0], 10).expect_err("cannot tell"));
+    let near = assembly_near(&tight, [deg(60.0)], 360).unwrap().expect("it assembles");
+    assert_eq!(near.found, [deg(60.0)]);
+    let entry = assembly_along(&tight, [deg(60.0)], [deg(200.0)], 10).unwrap().expect("it assembles");
+    assert_eq!(entry.at, [deg(60.0)]);
 }
 
 #[test]

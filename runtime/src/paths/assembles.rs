@@ -57,25 +57,33 @@ impl<X> Assembly<X> {
 /// samples' spacing (a stretch narrower than that, or one that only another guess reaches,
 /// goes unseen). A compiled mechanism's [`assembly_near_of`] (through [`Compiled`]).
 ///
-/// A sample counts as not assembling where its solve fails with [`Error::NoAssembly`],
-/// [`Error::NoConvergence`] (Newton's method from the declared guess, far from any position)
-/// or [`Error::Singular`] (a limit position met to the rounding, from which no sweep leaves),
-/// and where a sweep cannot start from the position solved ([`Error::NearSingular`],
-/// [`Error::SingularStart`]: nearer a singular position than a sweep accepts).
+/// A sample is passed over where its solve fails with [`Error::NoAssembly`] or
+/// [`Error::Singular`] (a limit position met to the rounding, from which no sweep leaves): the
+/// mechanism does not assemble there. So is one where a sweep cannot start from the position
+/// solved ([`Error::NearSingular`], [`Error::SingularStart`]: nearer a singular position than a
+/// sweep accepts, it assembles, but a hair inside a limit position, a sample from one that is a
+/// start).
 ///
-/// But where no sample is a start and some solve ran out of iterations, the search cannot tell
-/// a mechanism that assembles nowhere from a solver configured too tightly to find where it
-/// does (a `max_iterations` of 0 to 2 fails every solve of a four-bar that assembles
-/// everywhere): the answer is then the first such [`Error::NoConvergence`], naming the
-/// iterations, not `None`. Links that close nowhere fail as [`Error::NoAssembly`] (a closed
-/// form's test, or Newton's stalled residual), and stay `None`.
+/// A solve that runs out of iterations ([`Error::NoConvergence`]: Newton's method from the
+/// declared guess, far from the position) decides nothing: the mechanism may assemble there.
+/// Where one of the samples tried before the first that is a start (`at` itself, or one as
+/// near or nearer) ran out of iterations, the search cannot tell whether that nearer sample
+/// assembles, and a farther one would be no answer to "nearest": the answer is then the first
+/// such [`Error::NoConvergence`], naming the iterations and the input, not the farther sample.
+/// A four-bar that assembles at every input, its Newton solves allowed 4 iterations, solves
+/// from the declared guess only between 20 and 113 degrees: asked about 0, it answered 20
+/// degrees. So, too, where no sample is a start and some solve ran out of iterations (a
+/// `max_iterations` of 0 to 2 fails every solve of that four-bar): not `None`. Links that close
+/// nowhere fail as [`Error::NoAssembly`] (a closed form's test, or Newton's stalled residual),
+/// and stay `None`. Raise `max_iterations` (or declare a guess nearer the positions) where the
+/// answer is `NoConvergence`.
 ///
 /// Errors: a mechanism of other than one input, or whose input is not an angle, fewer than 2
 /// or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples, an input so large that
 /// the samples' spacing rounds away ([`Error::InvalidArgument`]); `at` not finite
-/// ([`Error::NonFinite`]); [`Error::NoConvergence`] where no sample is a start and some solve
-/// ran out of iterations (above); any other error of a point solve (a declared expression that
-/// leaves its domain) or of the sweeps.
+/// ([`Error::NonFinite`]); [`Error::NoConvergence`] where a sample tried before the answer's, or
+/// before none, ran out of iterations (above); any other error of a point solve (a declared
+/// expression that leaves its domain) or of the sweeps.
 pub fn assembly_near<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     at: [f64; NI],
@@ -133,6 +141,10 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
     for j in offsets {
         let x = input(x0 + j * spacing);
         let Some(q) = solved(m, &x, &cfg.newton, &mut undecided)? else { continue };
+        // A sample tried before this one, as near or nearer, may assemble: no answer.
+        if let Some(e) = undecided.take() {
+            return Err(e);
+        }
         // A turn each way: a linkage's stretch between two limit positions is shorter than that,
         // and one that reaches both ends turns fully.
         match reachable_of(m, x.clone(), input(TAU), q, samples / 2 + 1) {
@@ -146,10 +158,11 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
     nowhere(undecided)
 }
 
-/// The positions at `x` solved from the declared guess, or `None` where the mechanism does not
-/// assemble there as the searches count it: the solve fails with [`Error::NoAssembly`],
-/// [`Error::NoConvergence`] or [`Error::Singular`]. The first `NoConvergence` is kept in
-/// `undecided` (see [`nowhere`]); any other error is returned.
+/// The positions at `x` solved from the declared guess, or `None` where the solve fails with
+/// [`Error::NoAssembly`] or [`Error::Singular`] (the mechanism does not assemble there) or with
+/// [`Error::NoConvergence`] (undecided: the first is kept in `undecided`, which the searches
+/// answer with where it leaves their answer in doubt, see [`nowhere`]); any other error is
+/// returned.
 fn solved<K: Kernel>(
     m: &K,
     x: &X<K>,
@@ -212,14 +225,21 @@ pub struct PathEntry<X> {
 /// bisection. `None` where no sample solves (the path stays outside the assembly within the
 /// samples' spacing). A compiled mechanism's [`assembly_along_of`] (through [`Compiled`]).
 ///
-/// A sample counts as not assembling where its solve fails with [`Error::NoAssembly`],
-/// [`Error::NoConvergence`] or [`Error::Singular`]; any other error is returned. Where no
-/// sample solves and some solve ran out of iterations, the answer is that
-/// [`Error::NoConvergence`], not `None`, as for [`assembly_near`].
+/// A sample counts as not assembling where its solve fails with [`Error::NoAssembly`] or
+/// [`Error::Singular`]; any other error but [`Error::NoConvergence`] is returned. A solve that
+/// runs out of iterations decides nothing (the mechanism may assemble there), as for
+/// [`assembly_near`]: where a sample before the first that solves ran out of iterations, the
+/// path may enter the assembly there, and the answer is that [`Error::NoConvergence`], not an
+/// entry after it; so, too, where no sample solves and some ran out of iterations, not `None`.
+/// Between the last sample that fails and the first that solves, a point whose solve runs out
+/// of iterations counts as failing: the bisection goes on above it, so that `fraction` is a
+/// point that solves, within the samples' spacing of where the solves begin.
 ///
 /// Errors: fewer than 1 or more than [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples,
 /// `from` equal to `to`, ends so far apart that `to - from` overflows
-/// ([`Error::InvalidArgument`]); an input not finite ([`Error::NonFinite`]).
+/// ([`Error::InvalidArgument`]); an input not finite ([`Error::NonFinite`]);
+/// [`Error::NoConvergence`] where a sample before the first that solves, or before none, ran
+/// out of iterations (above); any other error of a point solve.
 pub fn assembly_along<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     from: [f64; NI],
@@ -261,14 +281,20 @@ pub fn assembly_along_of<K: Kernel>(
             "assembly_along: `to - from` overflows (beyond the largest double): give nearer ends of the path".into(),
         ));
     }
+    let solves = |tau: f64, undecided: &mut Option<Error>| {
+        Ok::<_, Error>(solved(m, &path.at_tau(tau), &cfg.newton, undecided)?.is_some())
+    };
     let mut undecided = None;
-    let mut solves = |tau: f64| Ok::<_, Error>(solved(m, &path.at_tau(tau), &cfg.newton, &mut undecided)?.is_some());
     let mut before = 0.0;
     for k in 0..=samples {
         let tau = k as f64 / samples as f64;
-        if !solves(tau)? {
+        if !solves(tau, &mut undecided)? {
             before = tau;
             continue;
+        }
+        // A sample before this one may assemble: no entry here is the path's first.
+        if let Some(e) = undecided.take() {
+            return Err(e);
         }
         // Between the last sample that fails and this one: where the solves begin.
         let (mut lo, mut hi) = (before, tau);
@@ -280,7 +306,9 @@ pub fn assembly_along_of<K: Kernel>(
                 if mid <= lo || mid >= hi || path.at_tau(lo).as_ref() == path.at_tau(hi).as_ref() {
                     break;
                 }
-                if solves(mid)? { hi = mid } else { lo = mid }
+                // Between the samples a solve that runs out of iterations counts as failing (see
+                // `assembly_along`): `hi` stays a point that solves.
+                if solves(mid, &mut None)? { hi = mid } else { lo = mid }
             }
         }
         return Ok(Some(PathEntry { fraction: hi, at: path.at_tau(hi), sample: path.at_tau(tau) }));
