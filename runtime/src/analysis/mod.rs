@@ -58,6 +58,9 @@ mod sampled;
 pub mod unbalance;
 
 pub use column::{Column, ColumnIndex, ColumnOf};
+pub(crate) use sampled::check_sampled_memory;
+#[cfg(test)]
+pub(crate) use sampled::sampled_bytes_each;
 pub use sampled::{MAX_SEARCH_POINTS, Sampled, SampledOf, samples_to_search};
 
 pub use dwell::{Dwell, dwells};

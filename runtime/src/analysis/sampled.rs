@@ -142,7 +142,7 @@ fn least_search_samples(natural: f64) -> usize {
 /// sample beside it while they search: the state (its own size and what it holds on the heap)
 /// and its path parameter, then a search's grid entry (a state's size, borrowed or not) and
 /// parameter, and a column's jet. What [`check_sampled_memory`] budgets.
-fn sampled_bytes_each<K: Kernel>(k: &K) -> usize {
+pub(crate) fn sampled_bytes_each<K: Kernel>(k: &K) -> usize {
     fn grid_entry<'a, T: Clone + 'a>() -> usize {
         size_of::<Cow<'a, T>>()
     }

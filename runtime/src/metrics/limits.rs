@@ -10,7 +10,7 @@
 //!   output's column.
 
 use crate::analysis::column::column_name;
-use crate::analysis::{Column, ColumnOf, LocalExtreme, SampledOf};
+use crate::analysis::{Column, ColumnOf, LocalExtreme, SampledOf, check_sampled_memory};
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::events::{Event, EventKind};
@@ -128,7 +128,9 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
     }
 
     /// Equally spaced inputs of the sweep (both ends included; from 2 to
-    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), else [`Limits::run`] is an error).
+    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), and with columns no more than their
+    /// states fit in [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), a
+    /// few million; else [`Limits::run`] is an error).
     pub fn samples(mut self, samples: usize) -> Self {
         self.samples = samples;
         self
@@ -154,7 +156,10 @@ impl<'a, M, const N: usize> Limits<'a, M, N> {
     ///
     /// A limit position of the input ends the range reached there (the extremes are located up to
     /// it, whatever the samples: those between the last sample and the limit too). Errors: a
-    /// start that cannot be assembled, a column outside the mechanism, and a sweep that stops
+    /// start that cannot be assembled, a column outside the mechanism, samples whose states,
+    /// kept to locate the columns' extremes, would exceed
+    /// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES) (before the sweep,
+    /// `Error::InvalidArgument` with the numbers), and a sweep that stops
     /// before the end for another reason than a limit position of the input: its error (it
     /// passes within [`SweepConfig::singular_pivot`] of a singular position and finds neither
     /// a limit position nor a crossing there, `Error::NearSingular`; a crossing it cannot
@@ -200,6 +205,14 @@ pub fn limits_of<K: Kernel, C: ColumnOf<K>>(
         .collect::<Result<Vec<_>, Error>>()?;
     if d.ni() != 1 {
         return Err(Error::InvalidArgument(format!("the limits of `{}` need one input (it has {})", k.name(), d.ni())));
+    }
+    // The columns' extremes are located over the range reached sampled again in memory, every
+    // state kept: samples whose states would exceed the memory budget are refused before the
+    // sweep, as the search the caller asked for (the sampled sweep refused them after the
+    // sweep, in the words of an analysis the caller never called). At most `samples` are kept.
+    if !columns.is_empty() {
+        let what = "the limit search (its columns' extremes are located over every sample's state)";
+        check_sampled_memory(&k, samples.max(3), what)?;
     }
     let input = |v: f64| {
         let mut x = d.x();
@@ -288,6 +301,29 @@ mod tests {
     use crate::analysis::Extreme;
     use crate::analysis::demo::SliderCrank;
     use std::f64::consts::TAU;
+
+    /// Samples whose states, kept to locate the columns' extremes, would exceed the memory
+    /// budget are refused before the sweep, in the words of the limit search: they were swept
+    /// (some seconds) and then refused by the sampled sweep the search keeps them in, an
+    /// analysis the caller never called. Without columns nothing is kept, and the same count is
+    /// swept: its guess, not a number, fails the first step.
+    #[test]
+    fn a_limit_search_beyond_the_memory_budget_is_refused_before_the_sweep_in_its_words() {
+        use crate::analysis::sampled_bytes_each;
+        use crate::paths::collected::MAX_COLLECTED_BYTES;
+        let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+        let samples = MAX_COLLECTED_BYTES / sampled_bytes_each(&Compiled(&m)) + 1;
+        let search = || Limits::new(&m, 0.0, 1e-3).samples(samples);
+        let err = search().guess([3.9]).columns(&[SliderCrank::COL.x]).run().expect_err("refused");
+        let msg = err.to_string();
+        assert!(matches!(err, Error::InvalidArgument(_)), "{err:?}");
+        let words = "the limit search (its columns' extremes are located over every sample's state) would keep";
+        let words = format!("{words} {samples} states");
+        assert!(msg.contains(&words) && msg.contains("fewer samples"), "{msg}");
+        assert!(!msg.contains("sampled sweep") && !msg.contains("run()"), "{msg}");
+        let err = search().guess([f64::NAN]).run().expect_err("a guess not a number");
+        assert!(!err.to_string().contains("would keep"), "{err}");
+    }
 
     /// A sample count beyond `analysis::MAX_SAMPLES` is refused before the sweep: the largest
     /// `usize` swept practically forever.

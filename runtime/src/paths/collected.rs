@@ -1,6 +1,7 @@
 //! The memory budget of what keeps one state (or row) per sample: a sweep's collecting methods
 //! ([`SweepOf::run`](super::sweep::SweepOf::run) and [`SweepOf::table`](super::sweep::SweepOf::table))
-//! and a [`SampledOf`](crate::analysis::SampledOf), where iterating a sweep keeps none.
+//! and a [`SampledOf`](crate::analysis::SampledOf) with the analyses built on one (a limit
+//! search's columns), where iterating a sweep keeps none.
 
 use crate::error::Error;
 
@@ -13,8 +14,9 @@ use crate::error::Error;
 /// allocation aborts the process rather than returning an error. What would exceed this is
 /// refused before any step, saying what to do instead: a sweep's `run` and `table` (iterate it,
 /// `for s in sweep`, or a fold, which keeps only what the caller keeps and is not bounded by
-/// this, or take fewer samples), a sampled sweep (fewer samples). The bound is on the states
-/// themselves; the vector holding them grows by doubling, as a `Vec` does.
+/// this, or take fewer samples), a sampled sweep and the analyses that keep one (fewer
+/// samples). The bound is on the states themselves; the vector holding them grows by doubling,
+/// as a `Vec` does.
 pub const MAX_COLLECTED_BYTES: usize = 1 << 30;
 
 /// `Err(Error::InvalidArgument)` when `count` items of `bytes_each` bytes, kept by `what` (what
