@@ -156,7 +156,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
     /// stops it; the result keeps the states before it, says why and where it stopped (a limit
     /// position between two inputs is located as in a sweep) and lists the events met
     /// ([`SweepResult::into_result`] for `?`). An angle parameter too large to resolve
-    /// ([`Mechanism::check_param_angles`]) stops it before the first input.
+    /// ([`Mechanism::check_param_angles`]) stops it before the first input; so do more inputs
+    /// than the memory budget of their states holds, a few million (see
+    /// [`sweep_at_of`]).
     fn sweep_at<I: Into<Self::Inputs>>(
         &self,
         inputs: impl IntoIterator<Item = I>,

@@ -1,7 +1,7 @@
 //! The memory budget of what keeps one state (or row) per sample: a sweep's collecting methods
-//! ([`SweepOf::run`](super::sweep::SweepOf::run) and [`SweepOf::table`](super::sweep::SweepOf::table))
-//! and a [`SampledOf`](crate::analysis::SampledOf) with the analyses built on one (a limit
-//! search's columns), where iterating a sweep keeps none.
+//! ([`SweepOf::run`](super::sweep::SweepOf::run) and [`SweepOf::table`](super::sweep::SweepOf::table)),
+//! [`sweep_at_of`](super::sweep_at::sweep_at_of), and a [`SampledOf`](crate::analysis::SampledOf)
+//! with the analyses built on one (a limit search's columns), where iterating a sweep keeps none.
 
 use crate::error::Error;
 
@@ -12,11 +12,12 @@ use crate::error::Error;
 /// A sweep may have up to [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) intervals, and a state
 /// takes a few hundred bytes: `run()` of `10^8` samples would ask for tens of GB, and a failed
 /// allocation aborts the process rather than returning an error. What would exceed this is
-/// refused before any step, saying what to do instead: a sweep's `run` and `table` (iterate it,
-/// `for s in sweep`, or a fold, which keeps only what the caller keeps and is not bounded by
-/// this, or take fewer samples), a sampled sweep and the analyses that keep one (fewer
-/// samples). The bound is on the states themselves; the vector holding them grows by doubling,
-/// as a `Vec` does.
+/// refused before any step (`sweep_at` of inputs whose count is not known, when its states reach
+/// it), saying what to do instead: a sweep's `run` and `table` (iterate it, `for s in sweep`, or
+/// a fold, which keeps only what the caller keeps and is not bounded by this, or take fewer
+/// samples), `sweep_at` (its inputs in parts), a sampled sweep and the analyses that keep one
+/// (fewer samples). The bound is on the states themselves; the vector holding them grows by
+/// doubling, as a `Vec` does.
 pub const MAX_COLLECTED_BYTES: usize = 1 << 30;
 
 /// `Err(Error::InvalidArgument)` when `count` items of `bytes_each` bytes, kept by `what` (what
@@ -29,8 +30,21 @@ pub(crate) fn check_collected(
     bytes_each: usize,
     instead: &str,
 ) -> Result<(), Error> {
+    check_collected_within(what, kept, count, bytes_each, instead, MAX_COLLECTED_BYTES)
+}
+
+/// [`check_collected`] against a `budget` of bytes (tested with a small one); the message names
+/// [`MAX_COLLECTED_BYTES`], the budget of every caller but a test.
+pub(crate) fn check_collected_within(
+    what: &str,
+    kept: &str,
+    count: usize,
+    bytes_each: usize,
+    instead: &str,
+    budget: usize,
+) -> Result<(), Error> {
     let total = count.saturating_mul(bytes_each);
-    if total <= MAX_COLLECTED_BYTES {
+    if total <= budget {
         return Ok(());
     }
     Err(Error::InvalidArgument(format!(

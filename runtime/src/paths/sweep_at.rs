@@ -1,6 +1,7 @@
 //! The states at given inputs, followed along the path through them without jumping branches
 //! ([`sweep_at_of`]: each stretch between consecutive inputs a sweep of its own).
 
+use super::collected::{MAX_COLLECTED_BYTES, check_collected_within};
 use super::outcome::SweepResult;
 use super::sweep::SweepOf;
 use crate::dims::Dims;
@@ -22,9 +23,42 @@ use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_inputs_finite, check_s
 /// mechanism's ([`Named::sweep_at`](crate::Named::sweep_at)) or one whose sizes are known at run
 /// time (`kinloop_model::Model::sweep_at`). An input or a guess of another size than the
 /// kernel's stops it with `Error::InvalidArgument`.
+///
+/// Every state is kept: inputs whose states would exceed
+/// [`MAX_COLLECTED_BYTES`] (1 GiB, a few million states)
+/// are refused with `Error::InvalidArgument` and the numbers, before any solve where the
+/// iterator tells their count (a list, a range), else where the states kept reach it (they are
+/// kept, the result stopped there). Give such inputs in parts, each part starting at the last
+/// input of the one before with its state's positions as the guess.
 pub fn sweep_at_of<K: Kernel>(m: &K, inputs: impl IntoIterator<Item = X<K>>, guess: Q<K>) -> SweepResult<KinOf<K>> {
+    sweep_at_within(m, inputs, guess, MAX_COLLECTED_BYTES)
+}
+
+/// [`sweep_at_of`] keeping at most `budget` bytes of states (tested with a small one).
+fn sweep_at_within<K: Kernel>(
+    m: &K,
+    inputs: impl IntoIterator<Item = X<K>>,
+    guess: Q<K>,
+    budget: usize,
+) -> SweepResult<KinOf<K>> {
     let (mut states, mut events) = (Vec::new(), Vec::new());
+    let inputs = inputs.into_iter();
+    // A state's own size and its arrays on the heap (a run-time model's).
+    let bytes_each = size_of::<KinOf<K>>() + m.dims().kin().heap_bytes();
+    let instead = "give the inputs in parts, each starting at the last input of the one before with its state's \
+                   positions as the guess";
+    // The states the budget holds; more are refused up front where the iterator knows it has
+    // more (its lower bound), else as the next state would pass it.
+    let most = budget / bytes_each.max(1);
+    if let Err(e) = check_collected_within("`sweep_at`", "states", inputs.size_hint().0, bytes_each, instead, budget) {
+        return SweepResult::new(states, Some(e), events);
+    }
     for x in inputs {
+        if states.len() == most {
+            let count = most + 1;
+            let e = check_collected_within("`sweep_at`", "states (counted so far)", count, bytes_each, instead, budget);
+            return SweepResult::new(states, e.err(), events);
+        }
         if let Err(e) = check_sizes(m, "sweep_at", &[&x], &[&guess]) {
             return SweepResult::new(states, Some(e), events);
         }
@@ -88,5 +122,49 @@ fn stretch_end<K: Kernel>(sweep: SweepOf<K, KinOf<K>>) -> Result<(KinOf<K>, Vec<
             None => Err((Error::InvalidArgument("a sweep without samples".into()), events)),
         },
         Err(e) => Err((e, events)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::demo::SliderCrank;
+    use crate::mechanism::Mechanism;
+    use crate::mechanism::kernel::Compiled;
+
+    const M: SliderCrank = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+
+    /// The bytes a state of `M` takes.
+    fn each() -> usize {
+        size_of::<KinOf<Compiled<'static, SliderCrank, 1, 1, 1>>>()
+    }
+
+    /// Inputs whose states would exceed the budget are refused before any solve where the
+    /// iterator tells their count, and where it does not, once the states kept reach it (those
+    /// kept, the result stopped there with the numbers); within it every input is solved.
+    /// Without a budget a list of `10^8` inputs kept every state until memory ran out.
+    #[test]
+    fn inputs_beyond_the_memory_budget_are_refused() {
+        let k = Compiled(&M);
+        let g = M.guess_flat(&[0.0]);
+        let budget = 10 * each();
+        let inputs = |n: usize| (0..n).map(|i| [0.1 * i as f64]);
+        let r = sweep_at_within(&k, inputs(11), g, budget);
+        assert!(r.states.is_empty());
+        let msg = r.into_result().expect_err("refused").to_string();
+        let numbers = format!("`sweep_at` would keep 11 states of {} bytes", each());
+        assert!(msg.contains(&numbers) && msg.contains("in parts"), "{msg}");
+        // An iterator that does not tell its count: the ten states that fit, then the refusal.
+        let mut n = 0;
+        let unknown = std::iter::from_fn(|| (n < 11).then(|| (n += 1, [0.1 * n as f64]).1));
+        let r = sweep_at_within(&k, unknown, g, budget);
+        assert_eq!(r.states.len(), 10);
+        let msg = r.into_result().expect_err("refused").to_string();
+        assert!(msg.contains("would keep 11 states (counted so far)"), "{msg}");
+        assert_eq!(sweep_at_within(&k, inputs(10), g, budget).into_result().unwrap().len(), 10);
+        // The real budget: more than a few million states is refused before any solve (the
+        // guess, not a number, would fail the first).
+        let r = sweep_at_of(&k, inputs(MAX_COLLECTED_BYTES / each() + 1), [f64::NAN]);
+        assert!(r.into_result().expect_err("refused").to_string().contains("`sweep_at` would keep"));
     }
 }
