@@ -18,6 +18,17 @@ use crate::number::Number;
 /// by an infinite (or NaN) objective. The configuration is apart from the problem: build it
 /// once, then [`minimize`](NelderMead::minimize) any objective.
 ///
+/// The stop is not relative: both tolerances are absolute, [`NelderMead::f_tol`] in the
+/// objective's own unit and [`NelderMead::x_tol`] in the variables' (each coordinate's own,
+/// whatever its size), so a problem written in other units needs them scaled as its objective
+/// and its variables are. With the defaults (`1e-12`, `1e-9`), a design whose lengths are in
+/// metres and about `1e-6` (a mechanism a micrometre across) converges once its simplex is a
+/// thousandth of its size, and an objective whose values are all below `1e-12` (squared errors
+/// in square metres of that mechanism) meets `f_tol` from the start, the simplex then stopped
+/// by `x_tol` alone. Restarts compare the improvement with `f_tol` too. In
+/// [`NelderMead::minimize_boxed`] `x_tol` applies to the box's mapped variables (radians of a
+/// sine: relative to each box's width, whatever its unit), `f_tol` still to the objective.
+///
 /// ```
 /// use kinloop_runtime::analysis::optimize::NelderMead;
 /// // Rosenbrock's valley: minimum 0 at (1, 1).
@@ -37,14 +48,16 @@ pub struct NelderMead {
     /// simplex is evaluated whole, and the last iteration may finish its contraction and shrink:
     /// up to `P + 2` more.
     pub max_evaluations: usize,
-    /// Converged when the simplex's objective values differ by at most `f_tol` ...
+    /// Converged when the simplex's objective values differ by at most `f_tol` (in the
+    /// objective's unit: an absolute bound, to be scaled with the objective) ...
     pub f_tol: f64,
-    /// ... and every vertex lies within `x_tol` (in each coordinate) of the best one (both
-    /// finite and not negative; defaults `1e-12` and `1e-9`).
+    /// ... and every vertex lies within `x_tol` (in each coordinate, in its own unit: an absolute
+    /// bound, to be scaled with the variables) of the best one (both finite and not negative;
+    /// defaults `1e-12` and `1e-9`).
     pub x_tol: f64,
     /// After convergence, rebuild the simplex around the best point (with the initial steps) up
-    /// to this many times, until a restart no longer improves the best value (default `2`). This
-    /// guards against the simplex collapsing before a minimum.
+    /// to this many times, until a restart no longer improves the best value by more than
+    /// `f_tol` (default `2`). This guards against the simplex collapsing before a minimum.
     pub restarts: usize,
 }
 
