@@ -523,6 +523,29 @@ fn a_parameter_without_a_name_is_refused_naming_params() {
     }
 }
 
+/// A parameter typed with a Cyrillic letter that looks like a Latin one (`а`, U+0430, for `a`:
+/// a keyboard left on another layout) is refused naming the letter, its code point and the
+/// parameter meant, where it was "no parameter `а`" beside a list holding `a`, the two alike.
+#[test]
+fn a_parameter_typed_with_a_look_alike_letter_names_the_letter_and_the_parameter() {
+    let four_bar = shipped("four_bar.kl");
+    let out = common::kinloop(&["solve", &four_bar, "--at", "0", "--params", "\u{430}=1,b=3,c=2.5,d=3.2"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(
+            "no parameter `\u{430}`: `\u{430}` (U+0430) is a Cyrillic letter that looks like the Latin `a`; write `a`"
+        ),
+        "{err}"
+    );
+    assert!(err.contains("(its parameters: a, b, c, d)"), "{err}");
+    // A name wrong in ASCII letters is told as before, without a word of scripts.
+    let out = common::kinloop(&["solve", &four_bar, "--at", "0", "--params", "q=1,b=3,c=2.5,d=3.2"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("has no parameter `q` (its parameters: a, b, c, d)"), "{err}");
+}
+
 /// A design variable given twice in `--vary` is refused naming the option, where the library's
 /// "the parameter `a` is named twice" named none.
 #[test]

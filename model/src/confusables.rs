@@ -4,6 +4,10 @@
 //! full-width sign from an East Asian keyboard (`（`, `；`). The compiler names such a character
 //! with the ASCII one it looks like; a `.kl` file deserves the same help, in the declaration
 //! language's terms.
+//!
+//! And the Latin letter that a letter of another script looks like ([`latin_lookalike`]): such a
+//! letter starts a name, a name of its own, which a reader told "no parameter `а`" beside `a`
+//! cannot tell from the one meant.
 
 /// The help for the character `c`, which starts no token, or `None` where there is none to give
 /// (a character that looks like no operator).
@@ -63,6 +67,83 @@ pub(crate) fn help(c: char) -> Option<String> {
     })
 }
 
+/// The Latin letter that `c`, a letter of another script, looks like in common fonts, with the
+/// name of its script: `Some(('a', "Cyrillic"))` for `а` (U+0430). A name typed with such a
+/// letter (a keyboard left on another layout, a name pasted from a document) is another name
+/// that reads the same: "no parameter `а`" beside a list holding `a` says nothing of why.
+/// `None` for an ASCII character and for a letter that reads as itself (Greek `α`, `β`, whose
+/// shapes are their own, may well be meant).
+///
+/// The letters are those of Unicode's confusables (UTS #39) that look like a Latin letter in
+/// a sans-serif face: the Cyrillic and Greek letters drawn alike, and the full-width Latin
+/// letters of East Asian keyboards.
+///
+/// ```
+/// use kinloop_model::latin_lookalike;
+/// assert_eq!(latin_lookalike('\u{430}'), Some(('a', "Cyrillic")));
+/// assert_eq!(latin_lookalike('\u{39f}'), Some(('O', "Greek")));
+/// assert_eq!(latin_lookalike('a'), None);
+/// assert_eq!(latin_lookalike('\u{3b1}'), None); // alpha: a letter of its own
+/// ```
+pub fn latin_lookalike(c: char) -> Option<(char, &'static str)> {
+    let latin = match c {
+        // Cyrillic, small and capital.
+        '\u{430}' => 'a',
+        '\u{435}' => 'e',
+        '\u{43e}' => 'o',
+        '\u{440}' => 'p',
+        '\u{441}' => 'c',
+        '\u{443}' => 'y',
+        '\u{445}' => 'x',
+        '\u{455}' => 's',
+        '\u{456}' => 'i',
+        '\u{458}' => 'j',
+        '\u{4bb}' => 'h',
+        '\u{501}' => 'd',
+        '\u{51b}' => 'q',
+        '\u{51d}' => 'w',
+        '\u{405}' => 'S',
+        '\u{406}' => 'I',
+        '\u{408}' => 'J',
+        '\u{410}' => 'A',
+        '\u{412}' => 'B',
+        '\u{415}' => 'E',
+        '\u{41a}' => 'K',
+        '\u{41c}' => 'M',
+        '\u{41d}' => 'H',
+        '\u{41e}' => 'O',
+        '\u{420}' => 'P',
+        '\u{421}' => 'C',
+        '\u{422}' => 'T',
+        '\u{423}' => 'Y',
+        '\u{425}' => 'X',
+        // Greek: omicron and nu small, and the capitals drawn as Latin ones.
+        '\u{3bf}' => 'o',
+        '\u{3bd}' => 'v',
+        '\u{391}' => 'A',
+        '\u{392}' => 'B',
+        '\u{395}' => 'E',
+        '\u{396}' => 'Z',
+        '\u{397}' => 'H',
+        '\u{399}' => 'I',
+        '\u{39a}' => 'K',
+        '\u{39c}' => 'M',
+        '\u{39d}' => 'N',
+        '\u{39f}' => 'O',
+        '\u{3a1}' => 'P',
+        '\u{3a4}' => 'T',
+        '\u{3a5}' => 'Y',
+        '\u{3a7}' => 'X',
+        // Full-width Latin letters (U+FF21 to U+FF3A, U+FF41 to U+FF5A): 0xFEE0 above ASCII.
+        '\u{ff21}'..='\u{ff3a}' | '\u{ff41}'..='\u{ff5a}' => {
+            return char::from_u32(c as u32 - 0xfee0).map(|l| (l, "full-width"));
+        }
+        _ => return None,
+    };
+    let script = if ('\u{370}'..='\u{3ff}').contains(&c) { "Greek" } else { "Cyrillic" };
+    Some((latin, script))
+}
+
 /// The help for the vulgar fraction `c`, `numerator / denominator`.
 fn fraction(c: char, numerator: u32, denominator: u32) -> String {
     format!("`{c}` (U+{:04X}) is no number: write `{numerator} / {denominator}`", c as u32)
@@ -98,5 +179,28 @@ mod tests {
         assert_eq!(help('３').as_deref(), Some("`３` (U+FF13) looks like `3`; write `3`"));
         assert!(help('＝').is_some_and(|h| h.contains("`lhs == rhs`")));
         assert_eq!(help('€'), None);
+    }
+
+    /// Every look-alike letter is a letter of its script that is not ASCII, named with the
+    /// ASCII letter of its case; the letters that read as themselves have none.
+    #[test]
+    fn look_alike_letters_name_the_latin_letter_of_their_case() {
+        use super::latin_lookalike;
+        let all = ('\u{370}'..='\u{52f}').chain('\u{ff00}'..='\u{ffef}');
+        let found: Vec<(char, char, &str)> =
+            all.filter_map(|c| latin_lookalike(c).map(|(l, script)| (c, l, script))).collect();
+        assert_eq!(found.len(), 29 + 16 + 52, "{found:?}");
+        for (c, l, script) in found {
+            assert!(c.is_alphabetic() && l.is_ascii_alphabetic(), "{c} {l}");
+            assert_eq!(c.is_uppercase(), l.is_ascii_uppercase(), "{c} (U+{:04X}) as {l}", c as u32);
+            assert!(["Cyrillic", "Greek", "full-width"].contains(&script), "{c}: {script}");
+        }
+        assert_eq!(latin_lookalike('\u{430}'), Some(('a', "Cyrillic")));
+        assert_eq!(latin_lookalike('\u{3bf}'), Some(('o', "Greek")));
+        assert_eq!(latin_lookalike('\u{ff41}'), Some(('a', "full-width")));
+        assert_eq!(latin_lookalike('\u{ff3a}'), Some(('Z', "full-width")));
+        for own in ['a', 'Z', '_', '\u{3b1}', '\u{3b2}', '\u{3c6}', '\u{436}', '\u{ff10}', '\u{ff3f}'] {
+            assert_eq!(latin_lookalike(own), None, "{own}");
+        }
     }
 }

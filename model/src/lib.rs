@@ -198,6 +198,7 @@ mod tape;
 pub use analysis::ModelSampled;
 pub use at::Jacobian;
 pub use blocks::StepFailure;
+pub use confusables::latin_lookalike;
 pub use count::Count;
 pub use dynamics::{ModelCycle, ModelSimulation};
 pub use factor::MAX_DENSE;
