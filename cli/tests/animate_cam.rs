@@ -248,13 +248,18 @@ fn a_refused_range_is_refused_before_the_cams_report() {
     assert!(!path.exists());
 }
 
-/// The notes written under an SVG's picture (`note: ...`).
+/// The notes written under an SVG's picture (`note: ...`), each read across the lines it is
+/// wrapped in to the picture's width (broken at spaces).
 fn notes(svg: &str) -> Vec<String> {
     let doc = roxmltree::Document::parse(svg).expect("well-formed SVG");
-    doc.descendants()
-        .filter(|n| n.attribute("class") == Some("note"))
-        .filter_map(|n| n.text().map(str::to_string))
-        .collect()
+    let mut notes: Vec<String> = Vec::new();
+    for line in doc.descendants().filter(|n| n.attribute("class") == Some("note")).filter_map(|n| n.text()) {
+        match notes.last_mut() {
+            Some(note) if !line.starts_with("note: ") => *note = format!("{note} {line}"),
+            _ => notes.push(line.to_string()),
+        }
+    }
+    notes
 }
 
 /// A roller larger than the pitch curve's curvature: the profile drawn crosses itself, and the

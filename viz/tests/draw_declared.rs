@@ -110,7 +110,8 @@ fn an_ambiguous_declaration_is_drawn_with_notes_saying_so() {
 
 /// The notes survive `into_drawing()`: the `Drawing` carries the declaration's notes and any
 /// added with `.note(..)`, and its SVGs (pose, exposures, animation) and its interactive page
-/// write each once, below the picture (within the picture's height), escaped.
+/// write each once, below the picture (within the picture's height, wrapped to its width),
+/// escaped.
 #[test]
 fn notes_survive_into_the_drawing_its_svg_and_its_page() {
     let m = Pointer::default();
@@ -130,15 +131,23 @@ fn notes_survive_into_the_drawing_its_svg_and_its_page() {
         finite(&svg);
         let doc = roxmltree::Document::parse(&svg).unwrap();
         let height: f64 = doc.root_element().attribute("height").unwrap().parse().unwrap();
-        let notes: Vec<(String, f64)> = doc
+        let lines: Vec<(String, f64)> = doc
             .descendants()
             .filter(|n| n.has_tag_name("text") && n.attribute("class") == Some("note"))
             .map(|n| (n.text().unwrap().to_string(), n.attribute("y").unwrap().parse().unwrap()))
             .collect();
-        assert_eq!(notes.iter().map(|(t, _)| t.clone()).collect::<Vec<_>>(), expected);
-        // One line each, in order, inside the picture.
-        assert!(notes.windows(2).all(|w| w[1].1 > w[0].1), "{notes:?}");
-        assert!(notes.iter().all(|(_, y)| *y <= height), "{notes:?} within {height}");
+        // Lines in order, inside the picture; a note wrapped to the picture's width goes on in
+        // the lines after its first (`note: ...`), broken at spaces.
+        assert!(lines.windows(2).all(|w| w[1].1 > w[0].1), "{lines:?}");
+        assert!(lines.iter().all(|(_, y)| *y <= height), "{lines:?} within {height}");
+        let mut notes: Vec<String> = Vec::new();
+        for (line, _) in &lines {
+            match notes.last_mut() {
+                Some(note) if !line.starts_with("note: ") => *note = format!("{note} {line}"),
+                _ => notes.push(line.clone()),
+            }
+        }
+        assert_eq!(notes, expected);
     }
     let page = kinloop_viz::draw::html(&m, &d, &motion, &kinloop_viz::draw::HtmlConfig::new("notes")).unwrap();
     let written: Vec<&str> =
@@ -151,6 +160,77 @@ fn notes_survive_into_the_drawing_its_svg_and_its_page() {
     let motion = Motion::record(&plain, plain.sweep(0.0, 1.0, 5, &plain.guess(0.0)).unwrap()).unwrap();
     let svg = plain.drawing().into_drawing().svg(&motion, 0).unwrap();
     assert!(!svg.contains("class=\"note\""));
+}
+
+/// A note is wrapped to the picture's width, not the picture widened to hold its text: a
+/// drawing with a note of ten words and one of ten thousand characters (words, or a single
+/// word with no space to break at) is as wide as with a note of one word, every line of a note
+/// within the margins by the drawing's estimate of a text's width (0.6 of the font size a
+/// character, the estimate that widens the picture for the readout); its words written in order,
+/// a word too long for a line broken within it, and a note past eight lines cut, ending `…`.
+/// The picture was as wide as its longest note's text (72 000 pixels for 10 000 characters).
+#[test]
+fn a_long_note_is_wrapped_to_the_pictures_width() {
+    let m = FourBar::default();
+    let motion = Motion::record(&m, m.sweep(0.0, 1.0, 5, &m.guess(0.0)).unwrap()).unwrap();
+    let words = |n: usize| (0..n).map(|k| format!("w{k}")).collect::<Vec<_>>().join(" ");
+    let drawn = |note: &str| {
+        let d = m.drawing().into_drawing().note(note);
+        [
+            d.svg(&motion, 2).unwrap(),
+            d.exposures(&motion, 3).unwrap(),
+            d.animate(&motion, &Animation::default()).unwrap(),
+        ]
+    };
+    let size = |doc: &roxmltree::Document| {
+        let at = |a: &str| -> f64 { doc.root_element().attribute(a).unwrap().parse().unwrap() };
+        (at("width"), at("height"))
+    };
+    let short: Vec<(f64, f64)> =
+        drawn("short").iter().map(|svg| size(&roxmltree::Document::parse(svg).unwrap())).collect();
+    // Each note, and whether it is cut.
+    let long_word = "x".repeat(10_000);
+    for (note, cut) in [(words(10), false), (words(60), false), (words(2500), true), (long_word.clone(), true)] {
+        for (svg, (width, height)) in drawn(&note).iter().zip(&short) {
+            let doc = roxmltree::Document::parse(svg).unwrap();
+            let (w, h) = size(&doc);
+            assert_eq!(w, *width, "{} characters", note.len());
+            let lines: Vec<(&str, f64, f64)> = doc
+                .descendants()
+                .filter(|n| n.has_tag_name("text") && n.attribute("class") == Some("note"))
+                .map(|n| {
+                    let at = |a: &str| -> f64 { n.attribute(a).unwrap().parse().unwrap() };
+                    (n.text().unwrap(), at("x"), at("y"))
+                })
+                .collect();
+            assert!(lines.len() <= 8, "{} lines", lines.len());
+            // The picture grows by the lines, each inside it.
+            assert!(h > *height || lines.len() == 1, "{h} vs {height}");
+            // The first line starts at the margin; none reaches into the margin on the right.
+            let margin = lines[0].1;
+            for (text, x, y) in &lines {
+                assert!(x + 0.6 * 12.0 * text.chars().count() as f64 <= w - margin, "{text} at {x} in {w}");
+                assert!(*y <= h, "{y} in {h}");
+            }
+            assert!(lines.windows(2).all(|p| p[1].2 > p[0].2), "{lines:?}");
+            let text: Vec<&str> = lines.iter().map(|l| l.0).collect();
+            assert!(text[0].starts_with("note: "), "{text:?}");
+            if cut {
+                assert_eq!(lines.len(), 8, "{text:?}");
+                assert!(text[7].ends_with('\u{2026}'), "{text:?}");
+            } else {
+                // Every word, in order, none broken.
+                let written: Vec<&str> = text.iter().flat_map(|l| l.split(' ')).filter(|w| !w.is_empty()).collect();
+                assert_eq!(written[1..].join(" "), note);
+                assert!(lines.len() > 1 || note.len() < 40, "{text:?}");
+            }
+            if note == long_word {
+                // A word with nowhere to break: broken within it, each line full.
+                let xs = text.concat().replace("note: ", "").replace('\u{2026}', "");
+                assert!(xs.chars().all(|c| c == 'x') && xs.len() > 8 * 30, "{text:?}");
+            }
+        }
+    }
 }
 
 #[test]

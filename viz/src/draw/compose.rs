@@ -111,6 +111,9 @@ struct Layers<'a> {
     /// Per input, its largest magnitude and its span over the poses: a readout writes every
     /// pose's value to the same digits.
     largest: Vec<(f64, f64)>,
+    /// The notes as written, wrapped to the picture's width: each line, and whether it
+    /// continues a note (indented by the width of `note: `).
+    note_lines: Vec<(String, bool)>,
 }
 
 /// Decimals of the degrees in the readout (what a slider shows) and in the events' labels
@@ -247,16 +250,19 @@ impl Layers<'_> {
         }
     }
 
-    /// The drawing's notes, one line each after the events' labels.
+    /// The drawing's notes after the events' labels, wrapped to the picture's width: one
+    /// `<text class="note">` a line (each a line of its own in a PNG's stroke font too, which
+    /// sets a `<text>` on one line), a note's later lines indented under its text.
     fn notes(&self, out: &mut String) {
         let first = self.first_event_line() + self.motion.events.len();
-        for (k, note) in self.d.notes.iter().enumerate() {
+        for (k, (line, continued)) in self.note_lines.iter().enumerate() {
+            let indent = if *continued { text_width(NOTE_PREFIX) } else { 0.0 };
             let _ = write!(
                 out,
                 r#"<text class="note" x="{}" y="{}" font-size="{FONT}" fill="{NOTE}">{}</text>"#,
-                num(self.d.canvas.margin),
+                num(self.d.canvas.margin + indent),
                 num(self.line_y(first + k)),
-                escape(&note_text(note))
+                escape(line)
             );
         }
     }
@@ -393,9 +399,63 @@ impl Layers<'_> {
 /// The colour of notes: apart from the ink and the events' red.
 pub(crate) const NOTE: &str = "#a0522d";
 
-/// A note as written: `note: text`.
-pub(crate) fn note_text(note: &str) -> String {
-    format!("note: {note}")
+/// What a note's first line starts with.
+const NOTE_PREFIX: &str = "note: ";
+
+/// The fewest characters a line of a note holds: a picture narrower than that (a mechanism
+/// drawn small, no readout) is widened to hold them, whatever the notes' lengths; narrower,
+/// a note would be a column of a word or two a line.
+const NOTE_MIN_CHARS: usize = 40;
+
+/// The most lines a note takes: a note says in a sentence or two what the drawing shows
+/// otherwise than the reader would think; past this it is cut, ending with `…`, so that the
+/// picture's height does not grow with the note's length (its whole text stays in
+/// [`Drawing::notes`] and on the page).
+const NOTE_MAX_LINES: usize = 8;
+
+/// `note` as written (`note: text`) in lines of at most `chars` characters (at least
+/// [`NOTE_MIN_CHARS`]), the later ones [`NOTE_PREFIX`]'s length shorter (they are indented by
+/// its width): broken at spaces, a word longer than a line broken within it, runs of
+/// spaces (and line breaks) made one. At most [`NOTE_MAX_LINES`], the last then ending with `…`.
+/// Each line with whether it continues the note.
+fn wrapped(note: &str, chars: usize) -> Vec<(String, bool)> {
+    let chars = chars.max(NOTE_MIN_CHARS);
+    let later = chars - NOTE_PREFIX.chars().count();
+    let mut lines: Vec<Vec<char>> = Vec::new();
+    let mut line: Vec<char> = NOTE_PREFIX.chars().collect();
+    // Nothing on the line yet but the prefix, or nothing at all: no space before the next word.
+    let mut fresh = true;
+    for word in note.split_whitespace() {
+        let mut word: Vec<char> = word.chars().collect();
+        loop {
+            let room = if lines.is_empty() { chars } else { later };
+            let gap = usize::from(!fresh);
+            let fits = room.saturating_sub(line.len() + gap);
+            // The word here, or on the next line where it fits on one: otherwise as much of it
+            // as fits here, the rest on the next (a fresh line always takes some of it).
+            if word.len() <= fits || (fresh || word.len() > later) && fits > 0 {
+                let here = word.len().min(fits);
+                line.extend(std::iter::repeat_n(' ', gap).chain(word.drain(..here)));
+                fresh = false;
+                if word.is_empty() {
+                    break;
+                }
+            }
+            lines.push(std::mem::take(&mut line));
+            fresh = true;
+        }
+    }
+    lines.push(line);
+    if lines.len() > NOTE_MAX_LINES {
+        lines.truncate(NOTE_MAX_LINES);
+        let last = &mut lines[NOTE_MAX_LINES - 1];
+        last.truncate(later - 1);
+        while last.last() == Some(&' ') {
+            last.pop();
+        }
+        last.push('\u{2026}');
+    }
+    lines.into_iter().enumerate().map(|(k, l)| (l.into_iter().collect(), k > 0)).collect()
 }
 
 /// A key time (a fraction of the pass) as written.
@@ -418,10 +478,11 @@ impl Drawing {
                 (values().fold(0.0f64, |m, v| m.max(v.abs())), hi - lo)
             })
             .collect();
-        let mut l = Layers { d: self, motion, scene, strip, bar, largest };
+        let mut l = Layers { d: self, motion, scene, strip, bar, largest, note_lines: Vec::new() };
         // The strip under the mechanism: the scale bar and readout, then one line per event,
-        // then one per note; the picture is widened (when fitted) to hold its longest line.
-        let lines = l.first_event_line() + motion.events.len() + self.notes.len();
+        // then the notes; the picture is widened (when fitted) to hold the readout and the
+        // events' labels, and the notes are wrapped to its width: a long note made the picture
+        // as wide as its text, the mechanism a sliver at the side of a 10 000-pixel picture.
         let pad = self.canvas.margin;
         let mut need: f64 = 0.0;
         if l.first_line() {
@@ -432,12 +493,16 @@ impl Drawing {
         for j in 0..motion.events.len() {
             need = need.max(2.0 * pad + text_width(&l.event_label(j)));
         }
-        for note in &self.notes {
-            need = need.max(2.0 * pad + text_width(&note_text(note)));
+        if !self.notes.is_empty() {
+            need = need.max(2.0 * pad + text_width(&"m".repeat(NOTE_MIN_CHARS)));
         }
         if self.canvas.window.is_none() {
             l.scene.view.width = l.scene.view.width.max(need.ceil());
         }
+        // As many characters as the estimate of their width puts within the margins.
+        let chars = ((l.scene.view.width - 2.0 * pad) / text_width("m")).floor().max(0.0) as usize;
+        l.note_lines = self.notes.iter().flat_map(|n| wrapped(n, chars)).collect();
+        let lines = l.first_event_line() + motion.events.len() + l.note_lines.len();
         if lines > 0 {
             l.scene.view.height += LINE * lines as f64 + 0.5 * LINE;
         }

@@ -223,8 +223,8 @@ pub struct Drawing {
     pub annotate: Annotate,
     /// Notes about the drawing (what it shows in a way the reader should know: a vector the
     /// default drawing could not classify, joints that coincide only numerically), written as
-    /// lines `note: ...` in the strip under the picture and under an interactive page's
-    /// picture.
+    /// lines `note: ...` in the strip under the picture (wrapped to its width, at most eight
+    /// lines a note) and under an interactive page's picture.
     pub notes: Vec<String>,
 }
 
@@ -344,7 +344,8 @@ impl Drawing {
     }
 
     /// Adds a note, written under the picture (`note: text`) by every SVG of the drawing and by
-    /// its interactive page.
+    /// its interactive page. An SVG wraps it to the picture's width (a long note does not widen
+    /// the picture) and cuts it with `…` past eight lines.
     ///
     /// ```
     /// use kinloop_viz::draw::{Drawing, Pt};
