@@ -231,7 +231,7 @@ const NOTED_RESTS: usize = 4;
 /// a note naming them: an extreme reached over a whole stretch is written at one point of it
 /// (the follower's lowest position "at 344 degrees", inside a dwell from 300 to 390), which
 /// reads as if it were reached there alone. `None` where it has no rest, or rests over the
-/// whole range (a constant), or the rests cannot be located.
+/// whole range (a constant, or constant to its rounding), or the rests cannot be located.
 fn rests_note(
     sampled: &kinloop_model::ModelSampled<'_>,
     column: &str,

@@ -381,6 +381,36 @@ fn a_column_standing_still_has_its_rests_noted() {
     assert!(err.lines().filter(|l| l.starts_with("note: ")).count() == 5 && !err.contains("follower.x"), "{err}");
 }
 
+/// Columns that stand still in exact arithmetic, their values rounding (a centred slider's pin
+/// height `c.y`, zero; its ratio to the rod `h`, zero; the rod's squared length `ll`, a quantity
+/// of no inferred kind, `l^2`), have no note: each stood still "at 0 length unit from phi = 0.1
+/// rad to phi = 0.191677 rad, and at 0 ... and 1 more stretches, and at -1.11022e-16 length unit
+/// from ...", stretches where their velocity analog happened to round to zero exactly, at values
+/// apart by their rounding. The dwell cam's follower, which moves and rests, keeps its note
+/// ([`a_column_standing_still_has_its_rests_noted`]).
+#[test]
+fn a_column_still_to_its_rounding_has_no_rests_noted() {
+    let file = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("extremes_still.kl");
+    let text = "pub struct SliderStill {
+        params r = 1.0, l = 3.0;
+        input phi;
+        unknowns psi = 0, x = -3.0;
+        loop oabo: r @ phi == (x, 0) + l @ psi;
+        point c = r @ phi - l @ psi;
+        output h = (r * sin(phi) - l * sin(psi)) / l;
+        output ll = (x - r * cos(phi)) * (x - r * cos(phi)) + r * sin(phi) * r * sin(phi);
+    }";
+    std::fs::write(&file, text).expect("write the declaration");
+    let f = file.display().to_string();
+    let (_, rows) = csv(&kinloop(&["extremes", &f, "--from", "0.1", "--to", "6.3", "--samples", "73"]));
+    // Rounding: zero within 1e-15 of the mechanism's size (4), `ll` within 1e-15 of its 9.
+    for (name, value) in [("c.y", 0.0), ("h", 0.0), ("ll", 9.0)] {
+        let (_, v) = row(&rows, name);
+        assert!((v[0] - value).abs() <= 1e-14 && (v[2] - value).abs() <= 1e-14, "{name}: {v:?}");
+    }
+    let _ = std::fs::remove_file(&file);
+}
+
 /// Over many turns the note names the first stretches at rest and the last, and counts the
 /// others: over a thousand turns it named every one, 655 KB of notes.
 #[test]

@@ -6,9 +6,10 @@
 //! The references are exact: the coupler angle and the slider's height are zero, the coupler
 //! joint's height of the parallelogram `a sin(phi)`.
 
-use kinloop::analysis::Sampled;
+use kinloop::analysis::{Rest, Sampled};
 use kinloop::{AtSingular, Error, SweepConfig};
 use kinloop_fixtures::FourBar;
+use kinloop_fixtures::cam_linkage::DwellCamRocker;
 use std::f64::consts::{PI, TAU};
 
 kinloop::mechanism! {
@@ -195,5 +196,54 @@ fn a_column_of_unknown_kind_that_stands_still_has_no_extremes() {
         assert!(matches!(&r, Err(Error::InvalidArgument(e)) if e.contains("no net travel")), "scale {s}: {r:?}");
         // The slider's own position keeps its dead centres.
         assert_eq!(turn.extremes(SliderRodSquared::COL.x).unwrap().len(), 2, "scale {s}");
+    }
+}
+
+/// The rests of a column that stands still (its values within its rounding over the range, as
+/// `extremes` judges it): one, the whole range, at every scale. Its velocity analog, exactly
+/// zero over some stretches and rounding over others, made rests of those stretches at values
+/// apart by their rounding: the slider's height "stood still" over several stretches of a turn, and
+/// `kinloop extremes` noted them one by one. A column that moves keeps its rests: the dwell
+/// cam's follower rests at the top and the bottom of its lift, its height moving between.
+#[test]
+fn a_column_that_stands_still_rests_over_the_whole_range() {
+    // One rest, from the first sample's input to the last's.
+    let whole =
+        |path: &[f64], r: &[Rest]| r.len() == 1 && r[0].start.x == path[0] && r[0].end.x == path[path.len() - 1];
+    for s in SCALES {
+        let m = SliderPin { r: s, l: 3.0 * s, e: 0.0 };
+        let turn = Sampled::sweep(&m, 0.1, 0.1 + TAU, 73, [0.0, -3.9 * s]).unwrap();
+        let r = turn.rests(SliderPin::COL.c.y).unwrap();
+        assert!(whole(turn.path_values(), &r), "scale {s}: {r:?}");
+        // At its value, zero to the rounding of lengths of about 4 s.
+        assert!(r[0].value().abs() < 1e-12 * s, "scale {s}: {r:?}");
+        // The slider moves: no rest.
+        assert_eq!(turn.rests(SliderPin::COL.x).unwrap(), [], "scale {s}");
+        let m = SliderRatio { r: s, l: 3.0 * s };
+        let turn = Sampled::sweep(&m, 0.1, 0.1 + TAU, 73, [0.0, -3.9 * s]).unwrap();
+        let r = turn.rests(SliderRatio::COL.h).unwrap();
+        assert!(whole(turn.path_values(), &r), "scale {s}: {r:?}");
+        let m = SliderRodSquared { r: s, l: 3.0 * s };
+        let turn = Sampled::sweep(&m, 0.1, 0.1 + TAU, 73, [0.0, -3.9 * s]).unwrap();
+        let r = turn.rests(SliderRodSquared::COL.ll).unwrap();
+        assert!(whole(turn.path_values(), &r), "scale {s}: {r:?}");
+        let m = FourBar { a: s, b: 3.0 * s, c: s, d: 3.0 * s };
+        let turn = parallelogram_turn(&m);
+        let r = turn.rests(FourBar::COL.beta).unwrap();
+        assert!(whole(turn.path_values(), &r), "scale {s}: {r:?}");
+        assert_eq!(turn.rests(FourBar::COL.pc.y).unwrap(), [], "scale {s}");
+    }
+    let m = DwellCamRocker::default();
+    let from = m.phi0 + 0.5 * m.rise;
+    let turn = Sampled::sweep(&m, from, from + TAU, 73, m.guess(from)).unwrap();
+    let r = turn.rests(DwellCamRocker::COL.follower.y).unwrap();
+    // At the top from the end of the rise to `phi1`, at the bottom from the end of the return
+    // to `phi0` a turn on; located as `rests.rs` checks them (within 1e-7 rad).
+    let ends: Vec<(f64, f64, f64)> = r.iter().map(|r| (r.start.x, r.end.x, r.value())).collect();
+    let want = [(m.phi0 + m.rise, m.phi1, m.y0 + m.lift), (m.phi1 + m.fall, TAU + m.phi0, m.y0)];
+    assert_eq!(ends.len(), 2, "{r:?}");
+    for (got, want) in ends.iter().zip(want) {
+        assert!((got.0 - want.0).abs() < 1e-7 && (got.1 - want.1).abs() < 1e-7, "{got:?} vs {want:?}");
+        assert!((got.2 - want.2).abs() <= 4.0 * f64::EPSILON * want.2, "{got:?} vs {want:?}");
     }
 }

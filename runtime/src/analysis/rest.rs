@@ -11,7 +11,10 @@
 //! a progressive output, which swings back within a band: an output that comes to rest without
 //! reversing has no dwell by that definition, and an oscillating output (a cam follower that
 //! rises, dwells, returns and dwells) has no net travel to define one. A velocity analog that
-//! only touches zero (an extreme, a limit of the output) is an instant, not a rest.
+//! only touches zero (an extreme, a limit of the output) is an instant, not a rest. A column of
+//! a sampled run that stands still over the whole range to its rounding (zero in exact
+//! arithmetic, its analog exactly zero over some stretches only) is one rest, the range, as
+//! `SampledOf::rests` judges it before looking for these.
 //!
 //! **Location.** Two or more consecutive samples at rest, with the midpoint between each two at
 //! rest too, mark a rest; each end between a sample at rest and a moving input is found by

@@ -896,9 +896,21 @@ impl<K: Kernel> SampledOf<K> {
     ///
     /// Unlike [`SampledOf::dwells`], for any output: a cam follower that rises, dwells, returns
     /// and dwells has no net travel, so no dwell by that definition, but two rests a turn.
+    ///
+    /// A column that stands still over the whole range to its rounding (all its values within
+    /// [`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of its natural scale, as
+    /// [`SampledOf::extremes`] judges it: a point's coordinate on a line of symmetry, zero in
+    /// exact arithmetic) is one rest, the whole range. Its values are rounding, and its
+    /// velocity analog, exactly zero over some stretches and a rounding's size over others,
+    /// made it "stand still" in fragments, at values apart by their rounding.
     pub fn rests(&self, c: impl ColumnOf<K>) -> Result<Vec<Rest>, Error> {
         let c = c.resolve(&self.k)?;
-        self.searched(c, |jets, corners, eval| rest::rests_across(jets, corners, eval))
+        self.searched(c, |jets, corners, eval| {
+            if let (true, Some(&start), Some(&end)) = (self.stands_still(c, jets, corners), jets.first(), jets.last()) {
+                return Ok(vec![Rest { start, end }]);
+            }
+            rest::rests_across(jets, corners, eval)
+        })
     }
 
     /// The maximum of a derived quantity `f(state)` (e.g. the magnitude of an acceleration
