@@ -189,7 +189,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Format::Html => {
             let config = page_config(&name, req).with_back_and_forth(motion.stopped);
             html_of(model, &drawing.into_drawing(), &motion, &config).map_err(|e| match e {
-                HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
+                HtmlError::UnknownColumn { ref name, ref available } => {
+                    usage(format!("--show: {e}{}", crate::names::look_alike_after(name, available)))
+                }
                 e => failed(&e),
             })?
         }
@@ -322,7 +324,9 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     }
     let drawing = noted_drawing(model);
     let text = html_grid_of(model, &drawing.into_drawing(), &grid, &config).map_err(|e| match e {
-        HtmlError::UnknownColumn { .. } => usage(format!("--show: {e}")),
+        HtmlError::UnknownColumn { ref name, ref available } => {
+            usage(format!("--show: {e}{}", crate::names::look_alike_after(name, available)))
+        }
         HtmlError::InvalidSetting(_) => usage(format!("{e} (fewer --samples, or more --frames)")),
         e => failed(&e),
     })?;

@@ -682,8 +682,9 @@ pub(crate) fn point_columns(model: &Model, name: &str, option: &str) -> Result<(
                 )));
             }
             Err(usage(format!(
-                "{option} {name}: {} has no point of that name (its points: {})",
+                "{option} {name}: {} has no point of that name{} (its points: {})",
                 model.name(),
+                crate::names::look_alike(name, &points),
                 points.join(", ")
             )))
         }

@@ -302,7 +302,8 @@ fn select(
         .map(|c| {
             quantities.iter().find(|(n, _)| n == c).cloned().ok_or_else(|| {
                 let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
-                exit::usage(format!("{name} has no unknown or output `{c}` (they are: {})", known.join(", ")))
+                let look = crate::names::look_alike(c, &known);
+                exit::usage(format!("{name} has no unknown or output `{c}`{look} (they are: {})", known.join(", ")))
             })
         })
         .collect()

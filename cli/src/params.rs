@@ -38,39 +38,13 @@ pub fn apply(model: &mut Model, list: &str) -> Result<(), Failed> {
             eprintln!(
                 "error: {} has no parameter `{name}`{} (its parameters: {})",
                 model.name(),
-                look_alike(name, model.params()),
+                crate::names::look_alike(name, model.params()),
                 model.params().join(", ")
             );
             return Err(Failed(exit::USAGE));
         }
     }
     Ok(())
-}
-
-/// What is wrong with `name`, no parameter, where it holds letters of another script that look
-/// like Latin ones (`а`, U+0430, Cyrillic, for `a`): each such letter with its code point and
-/// the one it resembles, and the name to write where that is a parameter among `params`. Empty
-/// otherwise. Without it "no parameter `а`" stood beside a list holding `a`, the two alike.
-fn look_alike(name: &str, params: &[String]) -> String {
-    let mut letters: Vec<String> = Vec::new();
-    let mut latin = String::with_capacity(name.len());
-    for c in name.chars() {
-        match kinloop_model::latin_lookalike(c) {
-            Some((l, script)) => {
-                let said = format!("`{c}` (U+{:04X}) is a {script} letter that looks like the Latin `{l}`", c as u32);
-                if !letters.contains(&said) {
-                    letters.push(said);
-                }
-                latin.push(l);
-            }
-            None => latin.push(c),
-        }
-    }
-    if letters.is_empty() {
-        return String::new();
-    }
-    let write = if params.contains(&latin) { format!("; write `{latin}`") } else { String::new() };
-    format!(": {}{write}", letters.join(", "))
 }
 
 /// Every parameter of `model` has a value: a default, or one given. Otherwise a usage error
@@ -130,33 +104,4 @@ pub fn imprecise_angle_within(model: &Model, bound: f64) -> Option<String> {
         Number(spacing),
         Number(bound)
     ))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::look_alike;
-
-    /// Each look-alike letter is named once with the one it resembles; the name to write is
-    /// given only where it is a parameter, and a name of ASCII or of letters of their own has
-    /// nothing to add.
-    #[test]
-    fn look_alike_letters_are_named_and_the_parameter_meant_given() {
-        let params: Vec<String> = ["a", "phi0", "lift"].map(String::from).to_vec();
-        assert_eq!(
-            look_alike("\u{430}", &params),
-            ": `\u{430}` (U+0430) is a Cyrillic letter that looks like the Latin `a`; write `a`"
-        );
-        assert_eq!(
-            look_alike("ph\u{456}0", &params),
-            ": `\u{456}` (U+0456) is a Cyrillic letter that looks like the Latin `i`; write `phi0`"
-        );
-        // Not a parameter once written in Latin letters (Greek omicron twice): the letter is
-        // still named, once.
-        assert_eq!(
-            look_alike("\u{3bf}\u{3bf}", &params),
-            ": `\u{3bf}` (U+03BF) is a Greek letter that looks like the Latin `o`"
-        );
-        assert_eq!(look_alike("b", &params), "");
-        assert_eq!(look_alike("\u{3b1}", &params), "");
-    }
 }

@@ -182,6 +182,13 @@ fn problem_error(name: &str, e: SynthesisError, req: &Request) -> Failed {
             Count(residuals, "equation"),
             Count(variables, "unknown")
         )),
+        // A name refused for a look-alike letter of another script says so (the library's
+        // message lists the names, which then read the same as the one refused).
+        SynthesisError::UnknownVariable { name: ref given, ref params, .. }
+        | SynthesisError::UnknownColumn { name: ref given, columns: ref params, .. } => {
+            let known: Vec<&str> = params.split(", ").collect();
+            exit::usage(format!("{name}: {e}{}", crate::names::look_alike_after(given, &known)))
+        }
         e => exit::usage(format!("{name}: {e}")),
     }
 }

@@ -546,6 +546,50 @@ fn a_parameter_typed_with_a_look_alike_letter_names_the_letter_and_the_parameter
     assert!(err.contains("has no parameter `q` (its parameters: a, b, c, d)"), "{err}");
 }
 
+/// Every other option that takes a declared name says the same of a look-alike letter: a
+/// column of `extremes` and of `animate --show`, a point of `--path` (as of `--point`), a design
+/// variable of `--vary` and the output of `--function` (whose messages come from the library,
+/// the note added after its list).
+#[test]
+fn every_declared_name_typed_with_a_look_alike_letter_names_the_letter() {
+    let s = Scratch::new("look_alike");
+    let (four_bar, coupler) = (shipped("four_bar.kl"), shipped("coupler_four_bar.kl"));
+    let (points, values, page) = (s.path("points.csv"), s.path("values.csv"), s.path("page.html"));
+    std::fs::write(&points, "0.5,2.0,1.0\n1.0,1.5,1.8\n1.5,0.8,2.2\n2.0,0.2,2.1\n").unwrap();
+    std::fs::write(&values, "0,1\n1,1.2\n2,1.4\n3,1.5\n").unwrap();
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    let synth = ["synth", &coupler, "--starts", "1", "--jobs", "1"];
+    let cases: [(Vec<&str>, &str); 5] = [
+        (
+            vec!["extremes", &four_bar, "--params", params, "--from", "0", "--to", "1", "--columns", "b\u{435}ta"],
+            "no unknown or output `b\u{435}ta`: `\u{435}` (U+0435) is a Cyrillic letter that looks like the Latin `e`; \
+             write `beta` (they are:",
+        ),
+        (
+            vec!["animate", &coupler, "--from", "0", "--to", "1", "--show", "g\u{430}mma", "--out", &page],
+            "(`\u{430}` (U+0430) is a Cyrillic letter that looks like the Latin `a`; write `gamma`)",
+        ),
+        (
+            [&synth[..], &["--targets", &points, "--path", "\u{440}", "--vary", "a=0.8..1.4"]].concat(),
+            "no point of that name: `\u{440}` (U+0440) is a Cyrillic letter that looks like the Latin `p`; write `p`",
+        ),
+        (
+            [&synth[..], &["--targets", &points, "--path", "p", "--vary", "\u{430}=0.8..1.4"]].concat(),
+            "(`\u{430}` (U+0430) is a Cyrillic letter that looks like the Latin `a`; write `a`)",
+        ),
+        (
+            [&synth[..], &["--targets", &values, "--function", "phi:g\u{430}mma", "--vary", "a=0.8..1.4"]].concat(),
+            "(`\u{430}` (U+0430) is a Cyrillic letter that looks like the Latin `a`; write `gamma`)",
+        ),
+    ];
+    for (args, said) in cases {
+        let out = common::kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(said), "{args:?}: {err}");
+    }
+}
+
 /// A design variable given twice in `--vary` is refused naming the option, where the library's
 /// "the parameter `a` is named twice" named none.
 #[test]
