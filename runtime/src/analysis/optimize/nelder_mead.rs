@@ -1,6 +1,9 @@
 //! The Nelder–Mead simplex method with the dimension-adaptive coefficients of Gao and Han
 //! (2012) (reflection 1, expansion `1 + 2/n`, contraction `3/4 - 1/(2n)`, shrink `1 - 1/n`),
-//! restarts from the best point, and evaluation counting.
+//! restarts from the best point, and evaluation counting. For one variable the coefficients are
+//! those of `n = 2`, the standard method's (expansion 2, contraction and shrink 1/2): at `n = 1`
+//! the shrink `1 - 1/n` is 0, which collapses the simplex onto its best vertex, a point the
+//! search then calls converged wherever it is.
 //!
 //! Box constraints (each parameter in a range) are best handled by
 //! [`NelderMead::minimize_boxed`], which searches unconstrained variables mapped into the box,
@@ -195,8 +198,14 @@ impl NelderMead {
         if P == 0 {
             return true;
         }
+        // The centroid is of the `P` best vertices; the coefficients are Gao and Han's at `P`,
+        // but at least 2: their shrink `1 - 1/n` is 0 at `n = 1`, and a shrink there put every
+        // vertex on the best one (a simplex of no size, "converged" where the slope is not
+        // zero: `(x + 0.1)^2 + exp(-((x + 0.25) / 0.15)^2)` stopped at its start, 0, slope
+        // -1.18, beside its minimum at 0.066). At `n = 2` they are the standard method's.
         let n = P.max(1) as f64;
-        let (alpha, gamma, rho, sigma) = (1.0, 1.0 + 2.0 / n, 0.75 - 0.5 / n, 1.0 - 1.0 / n);
+        let adaptive = P.max(2) as f64;
+        let (alpha, gamma, rho, sigma) = (1.0, 1.0 + 2.0 / adaptive, 0.75 - 0.5 / adaptive, 1.0 - 1.0 / adaptive);
         loop {
             // Order: best first, worst last.
             let mut idx: Vec<usize> = (0..=P).collect();
@@ -421,6 +430,35 @@ mod tests {
 
     /// No variable: the start is the minimum, whatever the tolerances (the search indexed the
     /// simplex's second vertex, a panic, with tolerances the single vertex could not meet).
+    /// One variable, where the search shrinks its simplex (the reflection beyond a bump, the
+    /// contraction onto it): Gao and Han's shrink at `n = 1` is 0, which put both vertices on
+    /// the best one, and the search stopped there "converged", at its start 0 after 9
+    /// evaluations, where the slope is -1.18. The minimum, at 0.0660 (value 0.03938, the root of
+    /// `f' = 2 (x + 0.1) - 2 (x + 0.25) / 0.15^2 exp(-((x + 0.25) / 0.15)^2)` by bisection
+    /// below), is found to the tolerances, with the first step either way.
+    #[test]
+    fn one_variable_is_not_collapsed_by_a_shrink() {
+        let f = |p: &[f64; 1]| (p[0] + 0.1).powi(2) + (-((p[0] + 0.25) / 0.15).powi(2)).exp();
+        let slope = |x: f64| 2.0 * (x + 0.1) - 2.0 * (x + 0.25) / 0.0225 * (-((x + 0.25) / 0.15).powi(2)).exp();
+        // The minimum: the slope's root in [0, 0.2] (negative at 0, positive at 0.2), bisected
+        // to the doubles.
+        let (mut lo, mut hi) = (0.0, 0.2);
+        assert!(slope(lo) < 0.0 && slope(hi) > 0.0);
+        while hi - lo > 1e-15 {
+            let mid = 0.5 * (lo + hi);
+            if slope(mid) < 0.0 { lo = mid } else { hi = mid }
+        }
+        let best = f(&[lo]);
+        for step in [1.0, -1.0, 0.5] {
+            let m = NelderMead::default().minimize(f, [0.0], [step]).unwrap();
+            assert!(m.converged(), "step {step}: {m:?}");
+            // Converged is the values within f_tol = 1e-12 of each other: about the minimum,
+            // where f'' = 10.3, that is within sqrt(2 f_tol / f'') = 4.4e-7 of it in x.
+            assert!((m.x[0] - lo).abs() < 1e-5, "step {step}: {} against {lo}", m.x[0]);
+            assert!(m.value - best < 1e-12, "step {step}: {} against {best}", m.value);
+        }
+    }
+
     #[test]
     fn no_variable_is_converged_at_the_start() {
         let m = NelderMead::default().with_tolerances(0.0, 0.0).minimize(|_: &[f64; 0]| 2.0, [], []).unwrap();
