@@ -119,3 +119,42 @@ fn slider_crank_torque_matches_classical_closed_form() {
     // The phase of the samples: one turn from 0.1, equally spaced.
     assert_close!(cycle.points[1].phi - cycle.points[0].phi, TAU / 720.0, tol::SOLVE);
 }
+
+kinloop::mechanism! {
+    /// A crank pushed round by its piston: the piston's position `x` is the input, a length.
+    pub struct PistonDriven {
+        params r = 0.05, l = 0.2, m = 2.0;
+        input x;
+        unknowns phi = 0.3, beta = -0.1;
+        loop abc: r @ phi + l @ beta == (x, 0);
+        point pin = r @ phi;
+        body crank: mass m, com pin;
+    }
+}
+
+/// A cycle turns its input through 2 pi: of a length input that is 2 pi of the unit of length,
+/// and no period of the machine. It is refused, naming the input and what it is, in every unit:
+/// in metres the 6.28 m stroke ran into a limit position (an error that blamed the branch), in
+/// millimetres the 6.28 mm from x = 200 mm came out as a cycle, its driving torque's mean
+/// -0.002 with no load at all (the inertia term over a stretch that is no period).
+#[test]
+fn a_cycle_of_an_input_that_is_a_length_is_refused_in_every_unit() {
+    use kinloop::dynamics::{DynamicsError, turn_states};
+    use kinloop::{Compiled, QuantityKind};
+    assert_eq!(PistonDriven::INPUT_KINDS, [QuantityKind::Length]);
+    for unit in [1.0, 1e3, 1e6] {
+        let m = PistonDriven { r: 0.05 * unit, l: 0.2 * unit, m: 2.0 };
+        let model = m.mass_model().unwrap();
+        let x0 = 0.2 * unit;
+        let run = InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0)).start(x0).guess(m.guess_flat(&[x0])).run();
+        let err = run.expect_err("a cycle over a length");
+        assert!(
+            matches!(&err, DynamicsError::InputNotAngle { input, kind: QuantityKind::Length } if input == "x"),
+            "unit {unit}: {err}"
+        );
+        let said = err.to_string();
+        assert!(said.contains("`x` is a length, not an angle") && said.contains("crank angle"), "{said}");
+        let states = turn_states(Compiled(&m), x0, 64, m.guess_flat(&[x0]));
+        assert!(matches!(states, Err(DynamicsError::InputNotAngle { .. })), "unit {unit}: {states:?}");
+    }
+}

@@ -7,6 +7,7 @@ use super::model::MassModel;
 use super::state::AnalogState;
 use crate::analysis::fourier::{Fourier, fourier};
 use crate::dims::Dims;
+use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel};
 use crate::paths::sweep::SweepOf;
@@ -188,9 +189,11 @@ where
 
     /// Runs the inverse dynamics over the turn.
     ///
-    /// Errors: fewer than 8 samples, more than memory holds, a start angle so large that the
-    /// doubles near it are more than a millionth of the samples' spacing apart (the steps between
-    /// the samples could not be told apart), or a speed law that is not finite as
+    /// Errors: an input known not to be an angle (a piston's position: a turn of it would be
+    /// `2 pi` of the unit of length) as [`DynamicsError::InputNotAngle`]; fewer than 8 samples,
+    /// more than memory holds, a start angle so large that the doubles near it are more than a
+    /// millionth of the samples' spacing apart (the steps between the samples could not be told
+    /// apart), or a speed law that is not finite as
     /// [`DynamicsError::BadValue`]; a kinematic failure over the turn (a limit position: the
     /// input cannot turn), or an angle parameter too large to resolve (beyond the configuration's
     /// `largest_precise_angle`, refused before the turn), as [`DynamicsError::Kinematics`]; the
@@ -217,7 +220,8 @@ where
 /// configuration ([`Kernel::solver_config`]: the defaults, or a
 /// [`Configured`](crate::Configured) mechanism's). The states [`InverseCycle::run`] evaluates
 /// (it visits them as the sweep makes them, [`each_turn_state`], and keeps none), with its
-/// errors; a mechanism with other than one input is [`DynamicsError::SizeMismatch`].
+/// errors; a mechanism with other than one input is [`DynamicsError::SizeMismatch`], one whose
+/// input is known not to be an angle (a length) [`DynamicsError::InputNotAngle`].
 pub fn turn_states<K: Kernel>(
     k: K,
     phi0: f64,
@@ -244,6 +248,15 @@ pub fn each_turn_state<K: Kernel>(
     let d = k.dims();
     if d.ni() != 1 {
         return Err(DynamicsError::SizeMismatch { what: "inputs of a one-input cycle", expected: 1, given: d.ni() });
+    }
+    // A turn is 2 pi of the input: of an angle, a period of the machine; of a length (a piston
+    // driving a crank), 2 pi of whatever unit the lengths are in, another stretch of motion in
+    // metres than in millimetres (a limit position "reached" in one, a cycle of nonsense
+    // harmonics in the other). An input of a kind not inferred (a hand-written mechanism's)
+    // is taken at its word.
+    let kind = k.input_kind(0);
+    if matches!(kind, QuantityKind::Length | QuantityKind::Dimensionless) {
+        return Err(DynamicsError::InputNotAngle { input: k.input_name(0).to_owned().into(), kind });
     }
     if samples < 8 {
         return Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why: "need at least 8" });

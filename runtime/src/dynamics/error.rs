@@ -3,6 +3,7 @@
 //! and integrator failures. Each converts into [`crate::Error`].
 
 use crate::error::Error;
+use crate::kinds::QuantityKind;
 use crate::number::Number;
 use std::borrow::Cow;
 
@@ -188,6 +189,21 @@ pub enum DynamicsError {
         /// The size given.
         given: usize,
     },
+    /// A cycle, which turns its input through one full turn of `2 pi` radians, was asked of a
+    /// mechanism whose input is known not to be an angle (a length: a piston's position, a
+    /// slider's): its "turn" would be `2 pi` of the input's unit, another stretch of motion in
+    /// each unit of length, and no period of the machine.
+    #[error(
+        "a cycle turns its input through a full turn (2 pi rad), but `{input}` is {}, not an angle: give the \
+         machine a crank angle as its input, or simulate it over time (`Simulation`, `kinloop simulate`)",
+        kind_name(*.kind)
+    )]
+    InputNotAngle {
+        /// The input's name.
+        input: Cow<'static, str>,
+        /// What the input is ([`QuantityKind::Length`] or [`QuantityKind::Dimensionless`]).
+        kind: QuantityKind,
+    },
     /// The integrator made its maximum number of steps (its budget,
     /// [`OdeConfig::max_steps`](super::OdeConfig::max_steps)) before the end time: the span
     /// asks for more steps than the budget allows at the step size the tolerances need.
@@ -214,6 +230,16 @@ impl From<DynamicsError> for Error {
             DynamicsError::Kinematics { source, .. } => source,
             other => Error::Dynamics(crate::error::Source::new(other)),
         }
+    }
+}
+
+/// A kind of quantity as a noun phrase: `a length`, `a pure number`.
+fn kind_name(kind: QuantityKind) -> &'static str {
+    match kind {
+        QuantityKind::Angle => "an angle",
+        QuantityKind::Length => "a length",
+        QuantityKind::Dimensionless => "a pure number",
+        QuantityKind::Other => "a quantity of its own unit",
     }
 }
 
