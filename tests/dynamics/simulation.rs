@@ -167,6 +167,47 @@ fn flywheel_gives_the_required_speed_fluctuation() {
     assert_close!((hi - lo) / omega_m, delta, 1e-4 * delta, "delta {}", (hi - lo) / omega_m);
 }
 
+/// The same drive turning clockwise: the flywheel of the law `-omega_m` (refused before, its
+/// speeds "not positive") is the counter-clockwise one's, its start speed negative, and the
+/// machine with it, driven backwards by the mean torque, runs a steady cycle whose speed
+/// fluctuates by `delta` about `-omega_m` (over its second turn backwards; the tolerances of the
+/// counter-clockwise run above).
+#[test]
+fn a_clockwise_flywheel_gives_the_required_speed_fluctuation() {
+    let drive = RhombicDrive::default();
+    let model = rhombic_model([0.0, 0.0]);
+    let (omega_m, delta) = (10.0, 1.0 / 50.0);
+    let cycle = |omega| {
+        let run = InverseCycle::new(&drive, &model, SpeedLaw::Constant(omega)).samples(3600);
+        run.guess(drive.guess_flat(&[0.0])).run().unwrap()
+    };
+    let fw = cycle(-omega_m).flywheel(delta).unwrap();
+    let forward = cycle(omega_m).flywheel(delta).unwrap();
+    assert!(fw.start_speed < 0.0 && fw.exact > 0.0, "{fw:?}");
+    assert_close!(fw.exact, forward.exact, 1e-12 * forward.exact);
+    let run = Simulation::new(&drive, &model)
+        .start(0.0, fw.start_speed)
+        .guess(drive.guess_flat(&[0.0]))
+        .drive(|_, _, _| fw.mean_torque)
+        .config(RunConfig::default().with_flywheel(fw.exact))
+        .stop_when(|_, y| y[0] <= -2.5 * TAU)
+        .run(1e3)
+        .unwrap();
+    let (mut hi, mut lo) = (f64::NEG_INFINITY, f64::INFINITY);
+    for s in &run.steps {
+        for k in 0..=20 {
+            let [phi, omega] = s.at(s.t0 + s.h * k as f64 / 20.0);
+            if phi <= -TAU && phi > -2.0 * TAU {
+                hi = hi.max(omega);
+                lo = lo.min(omega);
+            }
+        }
+    }
+    assert!(hi < 0.0, "{hi}");
+    assert_close!((hi + lo) / 2.0, -omega_m, 1e-5 * omega_m, "mean {}", (hi + lo) / 2.0);
+    assert_close!((hi - lo) / omega_m, delta, 1e-4 * delta, "delta {}", (hi - lo) / omega_m);
+}
+
 /// With a constant reduced inertia the energy method is exact: `1/2 J (omega_max^2 -
 /// omega_min^2) = dE_max` is `J delta omega_m^2 = dE_max` when `omega_m` is the mid-range
 /// speed. A crank of constant inertia under a load torque `3 sin phi + sin 2 phi`.

@@ -105,7 +105,8 @@ pub struct Flywheel {
     /// speed fluctuation is `delta` on the steady cycle); see [`Cycle::flywheel`].
     pub exact: f64,
     /// The input speed at the cycle's first angle on the steady cycle with the
-    /// [`Flywheel::exact`] flywheel (a start for a simulation of that cycle).
+    /// [`Flywheel::exact`] flywheel (a start for a simulation of that cycle), of the sign of the
+    /// cycle's speeds.
     pub start_speed: f64,
 }
 
@@ -486,11 +487,16 @@ impl Cycle {
     /// is `delta`, both over the samples (`J_fly` in closed form from the samples' energies and
     /// inertias, `E_0` by a safeguarded Newton iteration: a few passes over the samples).
     ///
+    /// The input may turn either way: a crank turning clockwise (every speed negative) has the
+    /// flywheel of the same law turning counter-clockwise, the energy equation holding along
+    /// the angle whichever way it runs (`omega_m` is then the mean of the speeds' magnitudes,
+    /// and [`Flywheel::start_speed`] negative).
+    ///
     /// `delta` lies in `[MIN_DELTA, 2)` ([`MIN_DELTA`]); outside it the error is
-    /// [`DynamicsError::BadValue`], as it is for a law whose speed is not positive at every
-    /// angle (a flywheel is sized for an input that keeps turning one way). A machine that needs
-    /// no flywheel but has no inertia about its input at an angle (its speed there does not
-    /// follow from its energy) is [`DynamicsError::SingularMass`] at that angle.
+    /// [`DynamicsError::BadValue`], as it is for a law whose speed is zero at an angle or not of
+    /// one sign at every angle (a flywheel is sized for an input that keeps turning one way). A
+    /// machine that needs no flywheel but has no inertia about its input at an angle (its speed
+    /// there does not follow from its energy) is [`DynamicsError::SingularMass`] at that angle.
     pub fn flywheel(&self, delta: f64) -> Result<Flywheel, DynamicsError> {
         if !(MIN_DELTA..2.0).contains(&delta) {
             return Err(DynamicsError::BadValue {
@@ -517,19 +523,23 @@ impl Cycle {
             }
         }
         // The energy method sizes a flywheel for an input that keeps turning one way: every speed
-        // of the law positive (then so is the mean). Tested speed by speed, not on the mean alone:
-        // a law that turns back had its flywheel sized, and one whose mean is zero passed or
-        // failed by the sign of the mean's rounding (a flywheel of 8e35 at 360 samples, an error
-        // at 720 or in other units).
-        if let Some(p) = self.points.iter().find(|p| p.omega <= 0.0) {
+        // of the law of the first one's sign, none zero. Tested speed by speed, not on the mean
+        // alone: a law that turns back had its flywheel sized, and one whose mean is zero passed
+        // or failed by the sign of the mean's rounding (a flywheel of 8e35 at 360 samples, an
+        // error at 720 or in other units). Either way round: the energy equation
+        // `1/2 J omega^2 = E_0 + E(phi)` holds along the angle whichever way the input runs, and
+        // is even in the speed, so a clockwise crank (every speed negative, which was refused)
+        // is sized on the speeds' magnitudes, its start speed given the law's sign.
+        let sign = self.points[0].omega.signum();
+        if let Some(p) = self.points.iter().find(|p| sign * p.omega <= 0.0) {
             return Err(DynamicsError::BadValue {
                 what: "cycle speed",
                 value: p.omega,
-                why: "must be positive at every angle (the input turning one way)",
+                why: "must be of one sign, not zero, at every angle (the input turning one way)",
             });
         }
         let mean_torque = -mean(self.points.iter().map(|p| p.load));
-        let omega_m = mean(self.points.iter().map(|p| p.omega));
+        let omega_m = mean(self.points.iter().map(|p| sign * p.omega));
         let work = self.work(mean_torque);
         let lo = work.iter().copied().fold(f64::INFINITY, f64::min);
         let energy_swing = work.iter().copied().fold(f64::NEG_INFINITY, f64::max) - lo;
@@ -554,8 +564,11 @@ impl Cycle {
             mechanism_inertia,
             flywheel: (total_inertia - mechanism_inertia).max(0.0),
             exact,
-            // The level is reduced by omega_m^2 (see `exact_flywheel`), and so is this speed.
-            start_speed: omega_m * (2.0 * (e0 + work[0] / omega_m / omega_m) / (exact + self.points[0].inertia)).sqrt(),
+            // The level is reduced by omega_m^2 (see `exact_flywheel`), and so is this speed; its
+            // sign is the law's.
+            start_speed: sign
+                * omega_m
+                * (2.0 * (e0 + work[0] / omega_m / omega_m) / (exact + self.points[0].inertia)).sqrt(),
         };
         let values = [f.mean_torque, f.total_inertia, f.mechanism_inertia, f.flywheel, f.exact, f.start_speed];
         if values.iter().all(|v| v.is_finite()) { Ok(f) } else { Err(overflow("flywheel sizing")) }

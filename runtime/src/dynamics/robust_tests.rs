@@ -192,6 +192,40 @@ fn a_speed_law_that_stops_or_turns_back_has_no_flywheel() {
     assert!(c.flywheel(0.05).is_ok());
 }
 
+/// A crank turning clockwise (every speed negative) has a flywheel: the energy equation
+/// `1/2 J omega^2 = E_0 + E(phi)` holds along the angle whichever way the input runs and is even
+/// in the speed, so its flywheel is the counter-clockwise law's, bit for bit, its start speed
+/// negative. It was refused as a speed "not positive at every angle". Against the closed form at
+/// constant inertia, where the energy method is exact: a load `50 cos phi` swings the work by
+/// `dE = 100`, so `J_total = dE / (delta omega_m^2) = 100 / (0.05 * 100) = 20`, the flywheel 19
+/// beside the mechanism's 1, and the speed at phi = 0 (`E = 0`, midway) `sqrt(2 E_0 / 20)` with
+/// `E_0 + 50 = 10 * 10.25^2`: 10.0031. The samples' trapezoidal work is `sin phi` to `h^2 / 12`
+/// of it (2.5e-5 at a degree), hence 1e-4.
+#[test]
+fn a_clockwise_crank_has_the_flywheel_of_the_counter_clockwise_one() {
+    let clockwise = law_cycle(360, |_| -10.0, |phi| 50.0 * phi.cos(), 1.0).flywheel(0.05).unwrap();
+    let close = |got: f64, want: f64| (got - want).abs() <= 1e-4 * want.abs();
+    assert!(close(clockwise.total_inertia, 20.0) && close(clockwise.flywheel, 19.0), "{clockwise:?}");
+    assert!(close(clockwise.exact, 19.0), "{clockwise:?}");
+    let e0 = 10.0 * 10.25f64.powi(2) - 50.0;
+    assert!(close(clockwise.start_speed, -(e0 / 10.0).sqrt()), "{clockwise:?}");
+    // A varying inertia and speed: the mirror image of the counter-clockwise law, bit for bit.
+    let points = |sign: f64| {
+        let points = (0..360)
+            .map(|k| {
+                let phi = std::f64::consts::TAU * k as f64 / 360.0;
+                let law = sign * (10.0 + 0.3 * phi.sin());
+                point(phi, 0.0, 40.0 * phi.cos() + 15.0 * (2.0 * phi).sin(), law, 2.0 + (2.0 * phi).cos())
+            })
+            .collect();
+        Cycle { points }
+    };
+    let forward = points(1.0).flywheel(0.02).unwrap();
+    let backward = points(-1.0).flywheel(0.02).unwrap();
+    assert!(forward.exact > 0.0 && forward.start_speed > 0.0, "{forward:?}");
+    assert_eq!(backward, Flywheel { start_speed: -forward.start_speed, ..forward });
+}
+
 #[test]
 fn a_machine_without_inertia_is_a_singular_mass_unless_a_flywheel_gives_it_one() {
     // No work over the cycle and no inertia: no flywheel is needed, and the speed does not follow
