@@ -364,7 +364,9 @@ impl CyclePoint {
 impl Cycle {
     /// The cycle of the one-input `states` (of a turn, e.g. [`turn_states`]) at the speed law
     /// `law`: `point` gives the point of each state at its speed and acceleration (see
-    /// [`CyclePoint::of`]). A speed law that is not finite is [`DynamicsError::BadValue`].
+    /// [`CyclePoint::of`]). A speed law that is not finite is [`DynamicsError::BadValue`]. The
+    /// harmonics and the flywheel need the states of one turn, equally spaced and without its
+    /// end (which repeats the start): of other states they are [`DynamicsError::BadValue`].
     pub fn over_states<S: AnalogState>(
         states: &[S],
         law: SpeedLaw<'_>,
@@ -419,6 +421,7 @@ impl Cycle {
                 return Err(DynamicsError::BadValue { what: "cycle value", value, why: "must be finite" });
             }
         }
+        self.check_turn()?;
         let big = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         let unit = if big > 0.0 { crate::number::pow2_at_most(big) } else { 1.0 };
         let scaled: Vec<f64> = v.iter().map(|x| x / unit).collect();
@@ -442,7 +445,9 @@ impl Cycle {
         }
     }
 
-    /// Fourier series of the driving torque up to `harmonics` (the mean is `a0`).
+    /// Fourier series of the driving torque up to `harmonics` (the mean is `a0`). The points
+    /// must be one turn's samples, equally spaced (see [`Cycle::over_states`]), else
+    /// [`DynamicsError::BadValue`]; so for [`Cycle::shaking_harmonics`] and [`Cycle::flywheel`].
     pub fn torque_harmonics(&self, harmonics: usize) -> Result<Fourier, DynamicsError> {
         self.series(|p| p.torque, harmonics)
     }
@@ -522,6 +527,7 @@ impl Cycle {
                 });
             }
         }
+        self.check_turn()?;
         // The energy method sizes a flywheel for an input that keeps turning one way: every speed
         // of the law of the first one's sign, none zero. Tested speed by speed, not on the mean
         // alone: a law that turns back had its flywheel sized, and one whose mean is zero passed
@@ -572,6 +578,32 @@ impl Cycle {
         };
         let values = [f.mean_torque, f.total_inertia, f.mechanism_inertia, f.flywheel, f.exact, f.start_speed];
         if values.iter().all(|v| v.is_finite()) { Ok(f) } else { Err(overflow("flywheel sizing")) }
+    }
+
+    /// The points one turn's samples: point `j` of `n` at the first one's angle plus `j 2 pi / n`
+    /// (to a thousandth of that spacing; the sweep of a turn puts them there to a millionth), else
+    /// [`DynamicsError::BadValue`] naming the first angle out of place. The harmonics and the
+    /// flywheel's work take the points as such a turn: a cycle made by [`Cycle::over_states`]
+    /// of a sweep over the closed turn `[phi0, phi0 + 2 pi]` (its last state repeating the
+    /// first) was one of `n + 1` points, every harmonic and the work off by about `1 / n`, as
+    /// `Ok`; of part of a turn, or of points left out, the same.
+    fn check_turn(&self) -> Result<(), DynamicsError> {
+        let Some(first) = self.points.first() else { return Ok(()) };
+        let step = TAU / self.points.len() as f64;
+        let misplaced = self.points.iter().enumerate().find(|&(j, p)| {
+            let off = p.phi - (first.phi + j as f64 * step);
+            // (A NaN angle is out of place too.)
+            off.is_nan() || off.abs() > 1e-3 * step
+        });
+        match misplaced {
+            Some((_, p)) => Err(DynamicsError::BadValue {
+                what: "cycle angle",
+                value: p.phi,
+                why: "the points must be one turn's samples, equally spaced from the first (as `turn_states` gives \
+                      them): a sweep over the closed turn repeats its first angle at its end, leave that state out",
+            }),
+            None => Ok(()),
+        }
     }
 
     /// The work `E(phi_j) = int_0^phi_j (M_m + Q) dphi` of a constant driving torque `M_m` and

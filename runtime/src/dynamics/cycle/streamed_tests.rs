@@ -5,6 +5,7 @@
 use super::*;
 use crate::analysis::demo::SliderCrank;
 use crate::dynamics::{Body, Coord, Rotation};
+use crate::kin::Kin;
 
 /// A slider of mass 2 at the slider crank's unknown (its position along the slide), 0.5 off it.
 fn slider_mass() -> MassModel<1, 1, 1> {
@@ -55,4 +56,46 @@ fn a_kinematic_failure_anywhere_on_the_turn_comes_before_a_point_s_error() {
     let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
     let r = InverseCycle::new(&m, &model, SpeedLaw::Varying(&speed)).samples(36).run();
     assert!(matches!(r, Err(DynamicsError::BadValue { what: "speed law", .. })), "{r:?}");
+}
+
+/// The harmonics and the flywheel take the points as one turn's samples. A cycle of the states
+/// of a sweep over the closed turn `[0, 2 pi]` (96 intervals, 97 states, the last repeating the
+/// first) was taken for 97 samples of a turn: the mean of its driving torque (`a0` of its
+/// harmonics) came out -0.470, the first sample's -45.6 counted twice over 97, where the turn's
+/// is 0 (1e-15), as `Ok`. It is refused, naming the first angle out of place, as is a half turn;
+/// the turn's states without their end give the turn's cycle, bit for bit.
+#[test]
+fn a_cycle_of_other_points_than_one_turn_has_no_harmonics_and_no_flywheel() {
+    let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
+    let model = slider_mass();
+    let law = SpeedLaw::Constant(10.0);
+    let evaluate = |k: &Kin<1, 1, 1>, omega: f64, eps: f64| {
+        let d = model.dynamics(k, &[omega])?;
+        let shaking = model.shaking(k, &[omega], &[eps], [0.0, 0.0])?;
+        let gamma = d.gamma.as_flattened().as_flattened();
+        CyclePoint::of(k.x[0], omega, eps, d.mass.as_flattened(), gamma, &d.forces, shaking)
+    };
+    let turn = InverseCycle::new(&m, &model, law).samples(96).run().unwrap();
+    let closed = crate::analysis::Sampled::sweep(&m, 0.0, TAU, 97, m.guess_flat(&[0.0])).unwrap();
+    let states = closed.states();
+    assert_eq!(states.len(), 97);
+    assert_eq!(states[96].x[0], TAU);
+    let wrong = Cycle::over_states(states, law, evaluate).unwrap();
+    for r in [
+        wrong.torque_harmonics(2).map(|_| ()),
+        wrong.shaking_harmonics(2).map(|_| ()),
+        wrong.flywheel(0.05).map(|_| ()),
+    ] {
+        let said = r.as_ref().err().map(ToString::to_string).unwrap_or_default();
+        assert!(matches!(&r, Err(DynamicsError::BadValue { what: "cycle angle", .. })), "{r:?}");
+        assert!(said.contains("leave that state out"), "{said}");
+    }
+    let half = Cycle { points: turn.points[..48].to_vec() };
+    assert!(matches!(half.torque_harmonics(2), Err(DynamicsError::BadValue { what: "cycle angle", .. })));
+    assert!(matches!(half.flywheel(0.05), Err(DynamicsError::BadValue { what: "cycle angle", .. })));
+    // Without the repeated end: the turn's cycle.
+    let open = Cycle::over_states(&states[..96], law, evaluate).unwrap();
+    assert_eq!(open, turn);
+    assert_eq!(open.torque_harmonics(2).unwrap(), turn.torque_harmonics(2).unwrap());
+    assert!(open.flywheel(0.05).is_ok());
 }
