@@ -110,8 +110,12 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         return Err(usage(format!("--samples {} is too few: a turn needs at least 8", req.samples)));
     }
     samples::check(req.samples)?;
-    if !(req.speed.is_finite() && req.speed > 0.0) {
-        return Err(usage(format!("--speed {} must be a positive number", Number(req.speed))));
+    // Either way round: a crank turning clockwise has its cycle and its flywheel too.
+    if !(req.speed.is_finite() && req.speed != 0.0) {
+        return Err(usage(format!(
+            "--speed {} must be a finite number, not zero (negative for an input turning clockwise)",
+            Number(req.speed)
+        )));
     }
     if !(MIN_DELTA..2.0).contains(&req.delta) {
         let min = Number(MIN_DELTA);

@@ -251,7 +251,8 @@ enum Command {
         decl: Declaration,
         #[command(flatten)]
         branch: Branch,
-        /// The constant input speed, in rad (or degrees with `--deg`) per time unit.
+        /// The constant input speed, in rad (or degrees with `--deg`) per time unit: negative for
+        /// an input turning clockwise (the flywheel's start speed then negative too).
         #[arg(long, allow_hyphen_values = true, value_parser = crate::numbers::number)]
         speed: f64,
         /// The input angle the turn starts at.

@@ -5,6 +5,7 @@
 mod common;
 
 use common::{kinloop, shipped};
+use kinloop::Number;
 use kinloop::dynamics::{InverseCycle, SpeedLaw};
 use kinloop_fixtures as fx;
 use std::process::Output;
@@ -131,6 +132,41 @@ fn dynamics_writes_the_compiled_engine_s_cycle_and_flywheel() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A crank turning clockwise (`--speed -150`) has the same cycle as the one turning
+/// counter-clockwise at the same angles but for the speed's sign: the engine's loads depend on
+/// positions only, and its inertia torques on the square of the speed. Its flywheel is the same,
+/// its start speed negative (as the library's `Cycle::flywheel` sizes it). Refused before as
+/// "not a positive number".
+#[test]
+fn a_crank_turning_clockwise_has_its_cycle_and_flywheel() {
+    let dir = std::env::temp_dir().join(format!("kinloop-dynamics-cw-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |speed: &str| {
+        let fly = dir.join(format!("flywheel{speed}.csv"));
+        let args = ["--samples", "72", "--start", "0.3", "--delta", "0.05", "--flywheel", fly.to_str().unwrap()];
+        let table = csv(&kinloop(&[&["dynamics", &shipped("engine.kl"), "--speed", speed], &args[..]].concat()));
+        let flywheel = parse(&std::fs::read_to_string(&fly).expect("the flywheel file"));
+        (table, flywheel)
+    };
+    let ((header, ccw), (fh, ccw_fly)) = run("150");
+    let ((header_cw, cw), (fh_cw, cw_fly)) = run("-150");
+    assert_eq!((&header, &fh), (&header_cw, &fh_cw));
+    assert_eq!(cw.len(), 72);
+    for (name, sign) in [("omega [rad/time unit]", -1.0), ("phi [rad]", 1.0), ("J [mass unit length unit^2]", 1.0)]
+        .into_iter()
+        .chain(header.iter().skip(3).map(|h| (h.as_str(), 1.0)))
+    {
+        let want: Vec<f64> = column(&header, &ccw, name).iter().map(|v| sign * v).collect();
+        assert_close(name, &column(&header, &cw, name), &want);
+    }
+    for name in &fh {
+        let sign = if name.starts_with("start_speed") { -1.0 } else { 1.0 };
+        let want: Vec<f64> = column(&fh, &ccw_fly, name).iter().map(|v| sign * v).collect();
+        assert_close(name, &column(&fh, &cw_fly, name), &want);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn degrees_and_parameters() {
     let out = kinloop(&[
@@ -218,10 +254,11 @@ fn bad_requests_and_bad_values_are_usage_errors() {
     assert!(!text.contains("kept") && text.contains("exact_flywheel"), "{text}");
     std::fs::remove_file(&left).unwrap();
     // The speed on its own (given twice, clap refuses the repetition before the check).
-    for speed in ["-3", "0", "inf", "NaN"] {
+    for speed in ["0", "-0", "inf", "-inf", "NaN"] {
         let (c, e) = code(&["dynamics", engine.as_str(), "--speed", speed]);
         assert_eq!(c, Some(2), "{speed}: {e}");
-        assert!(e.contains(&format!("--speed {} must be a positive number", speed.parse::<f64>().unwrap())), "{e}");
+        let given = speed.parse::<f64>().unwrap();
+        assert!(e.contains(&format!("--speed {} must be a finite number, not zero", Number(given))), "{e}");
     }
     // A start angle: not finite (checked here) or too large for the samples of a turn to be
     // told apart (checked by the runtime): both bad arguments.
