@@ -6,10 +6,11 @@ use super::eval::{Shaking, checked_drive_into};
 use super::model::MassModel;
 use super::state::AnalogState;
 use crate::analysis::fourier::{Fourier, fourier};
-use crate::dims::Dims;
+use crate::dims::{Dims, KinState};
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel};
+use crate::paths::collected::MAX_COLLECTED_BYTES;
 use crate::paths::sweep::SweepOf;
 use std::f64::consts::TAU;
 
@@ -222,13 +223,22 @@ where
 /// [`Configured`](crate::Configured) mechanism's). The states [`InverseCycle::run`] evaluates
 /// (it visits them as the sweep makes them, [`each_turn_state`], and keeps none), with its
 /// errors; a mechanism with other than one input is [`DynamicsError::SizeMismatch`], one whose
-/// input is known not to be an angle (a length) [`DynamicsError::InputNotAngle`].
+/// input is known not to be an angle (a length) [`DynamicsError::InputNotAngle`], and samples
+/// whose states would exceed [`MAX_COLLECTED_BYTES`] (1 GiB) [`DynamicsError::BadValue`],
+/// refused before the turn ([`each_turn_state`] keeps none).
 pub fn turn_states<K: Kernel>(
     k: K,
     phi0: f64,
     samples: usize,
     guess: <K::Dims as Dims>::Q,
 ) -> Result<Vec<<K::Dims as Dims>::Kin>, DynamicsError> {
+    let bytes_each = size_of::<<K::Dims as Dims>::Kin>() + k.dims().kin().heap_bytes();
+    check_kept(
+        samples,
+        bytes_each,
+        "more states than are kept in memory at most (1 GiB, \
+         `paths::collected::MAX_COLLECTED_BYTES`): visit them with `each_turn_state`, which keeps none",
+    )?;
     let mut states = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples));
     each_turn_state(k, phi0, samples, guess, |state| states.push(state.clone()))?;
     Ok(states)
@@ -306,6 +316,18 @@ pub fn each_turn_state<K: Kernel>(
         }
     }
     Ok(())
+}
+
+/// `samples` items of `bytes_each` bytes kept one per sample, refused as
+/// [`DynamicsError::BadValue`] (`why`) beyond [`MAX_COLLECTED_BYTES`]: up to
+/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES) samples are taken, and a cycle of `10^8` points
+/// (8 GB) or states (tens of GB) grew until an allocation failed and aborted the process. Refused
+/// before the turn is swept; fewer samples than `MAX_SAMPLES` are refused by this alone.
+fn check_kept(samples: usize, bytes_each: usize, why: &'static str) -> Result<(), DynamicsError> {
+    match samples.checked_mul(bytes_each) {
+        Some(total) if total <= MAX_COLLECTED_BYTES => Ok(()),
+        _ => Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why }),
+    }
 }
 
 /// The point of state `k` at the speed law's speed and acceleration there; a speed law that is
@@ -388,6 +410,13 @@ impl Cycle {
         law: SpeedLaw<'_>,
         mut point: impl FnMut(&<K::Dims as Dims>::Kin, f64, f64) -> Result<CyclePoint, DynamicsError>,
     ) -> Result<Cycle, DynamicsError> {
+        check_kept(
+            samples,
+            size_of::<CyclePoint>(),
+            "more points than a cycle keeps in memory at most (1 GiB, \
+             `paths::collected::MAX_COLLECTED_BYTES`): take fewer samples (a turn's harmonics and flywheel need \
+             far fewer than millions)",
+        )?;
         let mut points = Vec::with_capacity(crate::mechanism::kernel::reserve_for(samples));
         let mut failed = None;
         each_turn_state(k, phi0, samples, guess, |k| {

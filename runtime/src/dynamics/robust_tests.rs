@@ -320,14 +320,18 @@ fn shaking_and_centre_of_mass_are_typed_errors_or_finite() {
     assert!(matches!(d.checked_drive(&[0.0], &[1.0], &[1.0]), Err(DynamicsError::BadValue { .. })));
 }
 
-/// A turn of the largest sample count taken is not reserved up front: the sweep starts and
-/// fails at its first solve (a guess that is not a number) instead of the process aborting on
-/// an allocation of that many states. A larger count is refused before anything is allocated.
+/// A turn of the largest sample count whose states the memory budget holds is not reserved up
+/// front: the sweep starts and fails at its first solve (a guess that is not a number) instead
+/// of the process aborting on an allocation of that many states. The largest count an analysis
+/// takes is beyond the budget, and refused before anything is allocated, as is a larger one.
 #[test]
 fn a_huge_turn_is_not_reserved_up_front() {
     let m = crate::analysis::demo::SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
-    let r = turn_states(crate::Compiled(&m), 0.0, crate::analysis::MAX_SAMPLES, [f64::NAN]);
+    let most = crate::paths::collected::MAX_COLLECTED_BYTES / size_of::<crate::Kin<1, 1, 1>>();
+    let r = turn_states(crate::Compiled(&m), 0.0, most, [f64::NAN]);
     assert!(matches!(r, Err(DynamicsError::Kinematics { .. })), "{r:?}");
+    let r = turn_states(crate::Compiled(&m), 0.0, crate::analysis::MAX_SAMPLES, [f64::NAN]);
+    assert!(matches!(r, Err(DynamicsError::BadValue { what: "samples", .. })), "{r:?}");
     let r = turn_states(crate::Compiled(&m), 0.0, 1 << 40, [f64::NAN]);
     assert!(matches!(r, Err(DynamicsError::BadValue { what: "samples", .. })), "{r:?}");
 }

@@ -99,3 +99,29 @@ fn a_cycle_of_other_points_than_one_turn_has_no_harmonics_and_no_flywheel() {
     assert_eq!(open.torque_harmonics(2).unwrap(), turn.torque_harmonics(2).unwrap());
     assert!(open.flywheel(0.05).is_ok());
 }
+
+/// A cycle or a turn's states beyond the memory budget are refused before the turn is swept,
+/// as `samples`: a slider crank that cannot assemble at its start angle (its rod shorter than
+/// the crank, the start at `pi / 2`) fails its first solve, so a refusal is the check's and
+/// not the sweep's. At the budget the turn starts (and fails on that first solve).
+#[test]
+fn a_cycle_beyond_the_memory_budget_is_refused_before_the_turn() {
+    let m = SliderCrank { r: 1.0, l: 0.8, e: 0.0 };
+    let model = slider_mass();
+    let start = std::f64::consts::FRAC_PI_2;
+    let cycle =
+        |samples: usize| InverseCycle::new(&m, &model, SpeedLaw::Constant(1.0)).start(start).samples(samples).run();
+    let most = MAX_COLLECTED_BYTES / size_of::<CyclePoint>();
+    assert!(most < crate::analysis::MAX_SAMPLES);
+    let r = cycle(most + 1);
+    assert!(matches!(r, Err(DynamicsError::BadValue { what: "samples", .. })), "{r:?}");
+    assert!(r.unwrap_err().to_string().contains("take fewer samples"));
+    assert!(matches!(cycle(most), Err(DynamicsError::Kinematics { .. })));
+
+    let states = |samples: usize| turn_states(Compiled(&m), start, samples, m.guess_flat(&[start]));
+    let most = MAX_COLLECTED_BYTES / size_of::<Kin<1, 1, 1>>();
+    let r = states(most + 1);
+    assert!(matches!(r, Err(DynamicsError::BadValue { what: "samples", .. })), "{r:?}");
+    assert!(r.unwrap_err().to_string().contains("each_turn_state"));
+    assert!(matches!(states(most), Err(DynamicsError::Kinematics { .. })));
+}
