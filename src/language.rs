@@ -63,7 +63,9 @@
 //!   `wrap(x, psi)`, which change with the unit of length as the sum does. So does a vector of
 //!   an angle and a length wherever it is built outside a position: `norm((x, psi))` (which is
 //!   `sqrt(x^2 + psi^2)`), `dot((x, psi), u)`, `angle((x, 0) + (0, psi))` are compile errors at
-//!   the vector, which "combines an angle and a length". The vectors these functions take need
+//!   the vector, which "combines an angle and a length"; a sum of vectors one of whose
+//!   coordinates adds the two, `norm((x, 0) + (psi, 0))` (which is `norm((x + psi, 0))`), is
+//!   one at the sum, told once for the sum. The vectors these functions take need
 //!   not be lengths, only of one kind: a vector of angles (`norm((phi, psi))`), or of a length
 //!   and a constant or a number of no unit (`(x, 0.5)`, `(x, sin(psi))`), compiles as before.
 //!   An unknown that an `eq` sets to an expression of angles (`eq e: y == 2 * psi;`, the column

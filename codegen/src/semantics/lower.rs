@@ -50,7 +50,8 @@ pub struct Lowerer {
     /// The vectors built from two coordinates that vary (a tuple, a sum of vectors, a vector
     /// scaled) outside a position, for the check that one is not an angle where the other is a
     /// length ([`super::polar`]): `norm((x, psi))` and `dot((x, psi), u)` change with the unit of
-    /// length as `x + psi` does. A position's coordinates are judged each instead.
+    /// length as `x + psi` does; and each coordinate of a sum of vectors, whose two terms are
+    /// side by side as a scalar sum's are. A position's coordinates are judged each instead.
     pub(super) vector_pairs: Vec<VectorPair>,
     /// Set while a `let`, a `point` or an `output` is lowered: its sums are noted in
     /// `scalar_pairs`, as an equation's are.
@@ -208,6 +209,10 @@ pub(super) struct VectorPair {
     /// The coordinates of the vectors it is built from (the operands of a sum or a scaling): a
     /// vector built from one that mixes the two is that one mistake, told once.
     pub(super) parts: Vec<[NodeId; 2]>,
+    /// For one coordinate of a sum or difference of vectors (`x + psi` of `(x, 0) + (psi, 0)`,
+    /// the two terms in `pair`), the sum's coordinates: the sum is told once, whichever of its
+    /// coordinates or the vector itself mixes the two; `None` for the vector itself.
+    pub(super) sum: Option<[NodeId; 2]>,
 }
 
 /// An item whose Cartesian vectors have lengths for coordinates.
@@ -301,6 +306,21 @@ fn bare(e: &Expr) -> &Expr {
     match e {
         Expr::Paren { inner, .. } => bare(inner),
         _ => e,
+    }
+}
+
+/// The coordinate `component` of the vector `e` as written, and as a factor of a product: the
+/// coordinate itself in a tuple (`psi` of `(psi, 0)`), else the vector's component (`v.x`,
+/// `(2 * u).y`), whose factor is left empty for the message to name the angle it is made from.
+fn coordinate_of(e: &Expr, component: Component) -> (String, String) {
+    let field = if component == Component::X { "x" } else { "y" };
+    match bare(e) {
+        Expr::Tuple { x, y, .. } => {
+            let c = if component == Component::X { x } else { y };
+            (bare(c).show(), operand(c))
+        }
+        v @ (Expr::Var(_) | Expr::Field { .. } | Expr::Call { .. }) => (format!("{}.{field}", v.show()), String::new()),
+        v => (format!("({}).{field}", v.show()), String::new()),
     }
 }
 
@@ -492,20 +512,25 @@ impl Lowerer {
                     }
                     return None;
                 };
+                let verb = match op {
+                    BinOp::Add => Some("adds"),
+                    BinOp::Sub => Some("subtracts"),
+                    _ => None,
+                };
                 // A sum of vectors or a vector scaled builds a vector of the coordinates it
-                // gives (`(x, 0) + (0, psi)` is `(x, psi)`); a polar term's are lengths.
+                // gives (`(x, 0) + (0, psi)` is `(x, psi)`); a polar term's are lengths. Each
+                // coordinate of a sum of vectors is a sum too (`(x, 0) + (psi, 0)` is
+                // `(x + psi, 0)`).
                 if *op != BinOp::Polar {
                     let parts = [l, r].into_iter().filter_map(|v| match v {
                         Val::V(x, y) => Some([x, y]),
                         Val::S(_) => None,
                     });
                     self.note_vector(e, res, parts.collect());
+                    if let Some(verb) = verb {
+                        self.note_coordinate_sums(e, verb, (lhs, rhs), [l, r, res]);
+                    }
                 }
-                let verb = match op {
-                    BinOp::Add => Some("adds"),
-                    BinOp::Sub => Some("subtracts"),
-                    _ => None,
-                };
                 if self.in_equation || self.notes_sums {
                     let pair = verb.and_then(|v| ScalarPair::of(&self.graph, e.range(), v, (lhs, rhs), l, r));
                     self.scalar_pairs.extend(pair);
@@ -593,7 +618,43 @@ impl Lowerer {
             _ => ([(x, format!("({shown}).x")), (y, format!("({shown}).y"))], [String::new(), String::new()]),
         };
         let pair = ScalarPair { range: e.range(), shown, verb: "combines", sides, factors };
-        self.vector_pairs.push(VectorPair { pair, within, parts });
+        self.vector_pairs.push(VectorPair { pair, within, parts, sum: None });
+    }
+
+    /// Notes each coordinate of the sum or difference of vectors `e` (doing `verb`: its operands
+    /// `sides`, lowered with the result to `vals`) whose two terms vary, for the check that one
+    /// is not an angle where the other is a length: `norm((x, 0) + (psi, 0))` changes with the
+    /// unit of length as `norm((x + psi, 0))` does, though neither vector it adds mixes the two.
+    /// Noted where [`Self::note_vector`] notes vectors, for the same reasons: a position's
+    /// coordinates are judged each (`psi` of `point p = (x, 0) + (psi, 0);` is told as one).
+    fn note_coordinate_sums(&mut self, e: &Expr, verb: &'static str, sides: (&Expr, &Expr), vals: [Val; 3]) {
+        let within = match &self.lengths {
+            None => None,
+            Some(Place::Let(name)) => Some(name.clone()),
+            Some(_) => return,
+        };
+        let [Val::V(lx, ly), Val::V(rx, ry), Val::V(sx, sy)] = vals else { return };
+        if !(self.in_equation || self.notes_sums) {
+            return;
+        }
+        let shown = short(&bare(e).show());
+        for (component, [a, b]) in [(Component::X, [lx, rx]), (Component::Y, [ly, ry])] {
+            // A constant term is of the other's kind, as in a scalar sum.
+            if self.graph.as_const(a).is_some() || self.graph.as_const(b).is_some() {
+                continue;
+            }
+            let ((l_shown, l_factor), (r_shown, r_factor)) =
+                (coordinate_of(sides.0, component), coordinate_of(sides.1, component));
+            let pair = ScalarPair {
+                range: e.range(),
+                shown: shown.clone(),
+                verb,
+                sides: [(a, l_shown), (b, r_shown)],
+                factors: [l_factor, r_factor],
+            };
+            let (parts, sum) = (vec![[lx, ly], [rx, ry]], Some([sx, sy]));
+            self.vector_pairs.push(VectorPair { pair, within: within.clone(), parts, sum });
+        }
     }
 
     /// Whether `v` is the scalar constant zero.

@@ -760,20 +760,26 @@ pub(super) fn sums(lw: &mut Lowerer, angles: &mut Angles) {
 
 /// Reports every vector noted in `lw` whose coordinates are an angle and a length (`(x, psi)`
 /// given to `norm`, `dot`, `cross`, `angle` or `rot`, `(x, 0) + (0, psi)`): its magnitude,
-/// direction and products change with the unit of length, as the sum of the two does. A vector
-/// built from one told (`2 * (x, psi)`) is that mistake, and one in a vector `let` that a loop
-/// or point takes is told as a coordinate of a position by [`coordinates`].
+/// direction and products change with the unit of length, as the sum of the two does; and every
+/// sum of vectors one of whose coordinates adds the two (`(x, 0) + (psi, 0)`), told once. A vector
+/// built from one told (`2 * (x, psi)`, `(x, psi) + (0, x)`) is that mistake, and one in a vector
+/// `let` that a loop or point takes is told as a coordinate of a position by [`coordinates`].
 fn vectors_of_two_kinds(lw: &mut Lowerer, angles: &mut Angles, vectors: Vec<VectorPair>) {
     let positions = lets_taken_as_lengths(&lw.let_uses);
     let mut mixed: HashSet<[NodeId; 2]> = HashSet::new();
     for v in vectors {
         let [(x, _), (y, _)] = v.pair.sides;
+        // A coordinate of a sum of vectors stands for the sum: told as the sum, once.
+        let vector = v.sum.unwrap_or([x, y]);
         if v.parts.iter().any(|p| mixed.contains(p)) {
-            mixed.insert([x, y]);
+            mixed.insert(vector);
+            continue;
+        }
+        if v.sum.is_some() && mixed.contains(&vector) {
             continue;
         }
         let Some(e) = angle_beside_length(lw, angles, &v.pair) else { continue };
-        mixed.insert([x, y]);
+        mixed.insert(vector);
         if !v.within.is_some_and(|l| positions.contains_key(&l)) {
             lw.errors.push(e);
         }
