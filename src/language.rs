@@ -57,8 +57,9 @@
 //!   coordinates. Nor does a scalar sum, difference or `eq` put such an angle beside a length (a
 //!   name written elsewhere as a coordinate of a position or as the length of `@`): `eq e: s ==
 //!   phi;` with `s` a slider's travel is a compile error that says to write `s == r * phi`, and
-//!   so is `x + psi` in a `loop`, `let`, `point` or `output` alike (a reported value that mixes
-//!   the two changes with the unit of length as much as an equation does), and `max(x, psi)`,
+//!   so is `x + psi` in a `loop`, `let`, `point`, `output` or the law of a force or torque alike
+//!   (a reported value or a load that mixes the two changes with the unit of length as much as an
+//!   equation does), and `max(x, psi)`,
 //!   which is a length or an angle by the input, and `atan2(x, psi)`, `hypot(x, psi)` and
 //!   `wrap(x, psi)`, which change with the unit of length as the sum does. So does a vector of
 //!   an angle and a length wherever it is built outside a position: `norm((x, psi))` (which is
@@ -130,7 +131,11 @@
 //!   an angle only by a whole multiple of it in a sine or an inverse trigonometric function in
 //!   an `eq`. `force name at p = (fx, fy);` and
 //!   `torque name on angle = scalar;` are loads: expressions of parameters,
-//!   inputs and unknowns, evaluated by generated straight-line code; `gravity (0, -g);` sets
+//!   inputs and unknowns, evaluated by generated straight-line code. A law is judged by the unit
+//!   check as an `output` is (`torque t on psi = x + psi;` and `force f at p = (x, psi);` are
+//!   refused); whether it is a force or a torque at all is not: kinloop knows lengths and angles
+//!   only, and a law's parameters (a pressure, an area, a stiffness) carry no declared unit, so
+//!   a load is in the units its parameters are given in. `gravity (0, -g);` sets
 //!   gravity. The macro then generates `m.mass_model()`, the runtime's
 //!   [`dynamics::MassModel`](crate::dynamics::MassModel) for the reduced inertia, inverse
 //!   dynamics, shaking forces, flywheel and simulation. A negative literal mass or inertia, a

@@ -189,7 +189,7 @@ impl Pending {
         }
         let at = point(lw, at, "the point a force acts at");
         let value =
-            match lw.lower(value) {
+            match load_law(lw, value) {
                 Some(Val::V(x, y)) => Some([x, y]),
                 Some(Val::S(_)) => {
                     lw.errors.push(value.range().error(format!(
@@ -210,7 +210,7 @@ impl Pending {
         }
         let angle = angle(lw, on, "on");
         self.angles.extend(angle.map(|a| (on.clone(), a)));
-        let value = match lw.lower(value) {
+        let value = match load_law(lw, value) {
             Some(Val::S(v)) => Some(v),
             Some(Val::V(..)) => {
                 lw.errors.push(value.range().error(format!("torque `{name}` needs a scalar, but this is a vector")));
@@ -343,6 +343,19 @@ impl Pending {
         }
         model
     }
+}
+
+/// The law of a force or a torque, lowered with its sums noted for the check that none puts an
+/// angle beside a length ([`super::polar`]), as an `output`'s are: `x + psi` changes with the
+/// unit of length in a load as much as in a reported value. That is the one unit check a law can
+/// have: kinloop knows lengths and angles, not force, mass or time, and a law's parameters (a
+/// stiffness, a pressure, an area) carry no declared unit, so whether it is a force or a torque
+/// at all cannot be judged.
+fn load_law(lw: &mut Lowerer, value: &Expr) -> Option<Val> {
+    lw.notes_sums = true;
+    let lowered = lw.lower(value);
+    lw.notes_sums = false;
+    lowered
 }
 
 /// A mass or a moment of inertia: a scalar of the parameters, not a negative constant.
