@@ -35,7 +35,7 @@ use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 /// components pass through an adapter of the format rather than a trait of their type: the
 /// structs `mechanism!` generates hold `Vec2<T>` for any `T` they are given, with no more known of
 /// it than that it serializes, and `Vec2<[f64; N]>` or a user's own `T` keep serializing.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(
     feature = "serde",

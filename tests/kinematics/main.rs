@@ -22,6 +22,7 @@ mod five_bar;
 mod later_equations;
 mod limit_positions_extreme_scales;
 mod near_singular;
+mod pedantic_lints;
 mod prop_linkages;
 mod quantity_kinds;
 mod readme_tour;

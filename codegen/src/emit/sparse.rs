@@ -162,6 +162,8 @@ pub fn steps_item(sp: &Sparse, m: &str, b: usize, rt: &TokenStream) -> TokenStre
         #[doc(hidden)]
         #[allow(non_camel_case_types)]
         struct #id;
+        // `a -= m * b` as the tables write it, not `mul_add`: the same factor bit for bit.
+        #[allow(clippy::suboptimal_flops)]
         impl #rt::SparseSteps<#n, #nlu> for #id {
             #[inline]
             fn load<const NNZ: ::core::primitive::usize>(

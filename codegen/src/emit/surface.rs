@@ -390,10 +390,14 @@ fn motion_struct(s: &Surface, t: &Types) -> TokenStream {
 
 /// The standard traits a generated struct derives, by their paths in `core`: a bare `Clone` or
 /// `Default` is the prelude's, which a module with `#![no_implicit_prelude]` does not have.
-/// `Default` is derived by the named structs of values (`with_default`), not by the states.
+/// `Default` and `Eq` are derived by the named structs of values (`with_default`), generic over
+/// their element type, not by the states: such a struct is `Eq` where its element type is (a
+/// struct of `f64`s is not), which `clippy::derive_partial_eq_without_eq` asks of a public type
+/// deriving `PartialEq` in a crate that turns on `clippy::nursery`.
 pub fn std_derives(with_default: bool) -> TokenStream {
     let default = with_default.then(|| quote!(::core::default::Default,));
-    quote!(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, #default ::core::cmp::PartialEq)
+    let eq = with_default.then(|| quote!(, ::core::cmp::Eq));
+    quote!(::core::clone::Clone, ::core::marker::Copy, ::core::fmt::Debug, #default ::core::cmp::PartialEq #eq)
 }
 
 /// The derive attributes of a generated struct: the standard traits `std`, and `Serialize` and
