@@ -60,6 +60,9 @@ impl std::fmt::Display for StepFailure {
             StepFailure::Block(BlockFailure::Overflow { row }) => {
                 write!(f, "the terms of the block's row {row} are too large for f64: their magnitude overflows")
             }
+            StepFailure::Block(BlockFailure::Vanished { row }) => {
+                write!(f, "every term of the block's row {row} is zero: it holds at every position")
+            }
         }
     }
 }

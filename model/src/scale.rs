@@ -20,7 +20,7 @@ use crate::blocks::StepFailure;
 use crate::model::{Model, StepError};
 use kinloop_runtime::generated::{
     AtLimit, BlockEval, BlockFailure, OwnJacobian, SolveReport, closes_in_own_magnitudes, in_block,
-    singular_in_own_magnitudes, solve_blocks, to_rescue, turns_culprit, whole_position,
+    singular_in_own_magnitudes, solve_blocks, to_rescue, turns_culprit, vanished_row, whole_position,
 };
 use kinloop_runtime::{NewtonConfig, QuantityKind};
 
@@ -87,7 +87,15 @@ impl Model {
         let overflowed =
             matches!(error, StepError::Block { failure: StepFailure::Block(BlockFailure::Overflow { .. }), .. });
         let mut jac = Jacobian::default();
-        if self.jacobian(x, guess, &mut jac).is_err() || !to_rescue(&jac.scale, overflowed) {
+        if self.jacobian(x, guess, &mut jac).is_err() {
+            return Err(error);
+        }
+        // A loop whose lengths are all zero explains the failure at every size, as the compiled
+        // rescue finds it (`vanished_row`): the closed forms called it singular.
+        if let Some(row) = vanished_row(&jac.scale, &jac.f, &jac.j) {
+            return Err(self.whole_failure(BlockFailure::Vanished { row }));
+        }
+        if !to_rescue(&jac.scale, overflowed) {
             return Err(error);
         }
         macro_rules! whole {

@@ -1024,3 +1024,66 @@ fn a_link_below_the_rounding_on_an_exact_triangle_is_singular_read_and_compiled_
         }
     }
 }
+
+/// A loop whose lengths are all zero (parameters left at zero, as unset ones are) fails the
+/// model's step as it fails the compiled one, field for field and in its message: an invalid
+/// argument naming the loop, not the block's singular position that both reported (the
+/// four-bar's closed form, and the class IV group's Newton block, decomposed and dense); for the
+/// step, the positions alone, and a sweep's first sample (which both said starts at a singular
+/// position). The model's own record of the step says the block's row holds at every position.
+#[test]
+fn a_loop_whose_lengths_are_all_zero_fails_alike() {
+    let cfg = NewtonConfig::default();
+    let zero_loop = |e: &Error, name: &str| match e {
+        Error::InvalidArgument(m) => {
+            assert!(m.contains(&format!("the links of loop `{name}` all have length zero")), "{m}")
+        }
+        other => panic!("{other:?}"),
+    };
+    let compiled = fx::FourBar { a: 0.0, b: 0.0, c: 0.0, d: 0.0 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 0.0), ("b", 0.0), ("c", 0.0), ("d", 0.0)]);
+    for (x, guess) in [([0.7], [0.5, 1.5]), ([-2.0], [-2.0, 3.0])] {
+        let e = same_error(&compiled, &mut model, x, guess);
+        zero_loop(&e, "abcd");
+        let step = model.kinematics(&x, &guess, &cfg).map(drop).unwrap_err();
+        assert!(step.to_string().contains("holds at every position"), "{step}");
+        same(&e, &model.explain(&x, &guess, &cfg, step));
+        let positions = model.positions(&x, &guess, &cfg).map(drop).unwrap_err();
+        same(&compiled.position_flat(&x, &guess, &cfg).unwrap_err(), &model.explain(&x, &guess, &cfg, positions));
+        let c_sweep = Sweep::<_, Kin<2, 1, 2>, 2, 1, 2>::new(&compiled, x, [x[0] + 1.0], 5, guess).unwrap();
+        let c_err = c_sweep.filter_map(Result::err).next().expect("the compiled sweep fails");
+        let r_err = model.sweep(&x, &[x[0] + 1.0], 5, &guess).unwrap().filter_map(Result::err).next().expect("fails");
+        same(&c_err, &r_err);
+        zero_loop(&r_err, "abcd");
+    }
+    let z = 0.0;
+    let blocked = fx::ClassFour { oa: z, xb: z, yb: z, ac: z, ae: z, bd: z, bf: z, cd: z, ef: z, ..Default::default() };
+    let dense =
+        fx::ClassFourDense { oa: z, xb: z, yb: z, ac: z, ae: z, bd: z, bf: z, cd: z, ef: z, ..Default::default() };
+    // The `#[kinloop(dense)]` twin's text (`stringify!` puts a line break after the name).
+    let dense_text = format!(
+        "#[kinloop(dense)] {}",
+        fx::CLASS_FOUR_TEXT.replacen("pub struct ClassFour", "pub struct ClassFourDense", 1)
+    );
+    class_four_alike(&blocked, fx::CLASS_FOUR_TEXT, &zero_loop);
+    class_four_alike(&dense, &dense_text, &zero_loop);
+}
+
+/// [`a_loop_whose_lengths_are_all_zero_fails_alike`] of the class IV group `compiled` (its
+/// lengths zero) and the model of `text` with the same lengths: the step and the positions alone
+/// fail alike, with the error `zero_loop` checks of its first loop, `acdb`.
+fn class_four_alike<M: Mechanism<4, 1, NO>, const NO: usize>(
+    compiled: &M,
+    text: &str,
+    zero_loop: &dyn Fn(&Error, &str),
+) {
+    let cfg = NewtonConfig::default();
+    let mut model = read(text);
+    set(&mut model, &["oa", "xb", "yb", "ac", "ae", "bd", "bf", "cd", "ef"].map(|p| (p, 0.0)));
+    let x = [1.0];
+    let guess = compiled.guess_flat(&x);
+    zero_loop(&same_error(compiled, &mut model, x, guess), "acdb");
+    let positions = model.positions(&x, &guess, &cfg).map(drop).unwrap_err();
+    same(&compiled.position_flat(&x, &guess, &cfg).unwrap_err(), &model.explain(&x, &guess, &cfg, positions));
+}

@@ -15,7 +15,7 @@ pub use crate::kin::{ByValue, Health, Jac, Kin, KinSink, Sens, first_non_finite_
 pub use crate::kinds::QuantityKind;
 pub use crate::mechanism::extreme_scale::{
     AtLimit, Block, OwnJacobian, closes_in_own_magnitudes, in_block, singular_in_own_magnitudes, solve_blocks,
-    to_rescue, whole_position,
+    to_rescue, vanished_row, whole_position,
 };
 pub use crate::mechanism::{Mechanism, Sensitivities};
 pub use crate::mechanism::{block_failure, rescue, rescue_position, rescue_sensitivities};

@@ -27,3 +27,4 @@ mod sin_cos_order;
 mod sparse_steps;
 mod step_cost;
 mod underflowed_magnitudes;
+mod zero_lengths;

@@ -52,9 +52,14 @@ pub fn turns_culprit(
         // A value not finite does not: the closed forms' check of their guesses' sum finds finite
         // guesses "not finite" where the sum overflows, which takes an angle's guess of about
         // `1e292` rad or more (a length's is at most `f64::MAX`), far beyond the bound.
-        (BlockFailure::InvalidConfig { .. } | BlockFailure::Underflow { .. } | BlockFailure::Overflow { .. }, _) => {
-            None
-        }
+        // Nor do lengths that are all zero.
+        (
+            BlockFailure::InvalidConfig { .. }
+            | BlockFailure::Underflow { .. }
+            | BlockFailure::Overflow { .. }
+            | BlockFailure::Vanished { .. },
+            _,
+        ) => None,
         (_, Some(u)) if guess[u].abs() > largest_precise_angle(cfg) => Some((Some(u), guess[u])),
         _ => None,
     }
@@ -92,9 +97,34 @@ pub fn block_error(fail: BlockFailure, at: Location) -> Error {
         BlockFailure::Overflow { row } => {
             Error::Overflow { what: Computed::Equation, name: name(row), at: Box::new(at) }
         }
+        BlockFailure::Vanished { row } => vanished_error(&name(row), &at),
         // Named by `block_failure` (`mechanism`), which knows the guesses.
         BlockFailure::TooManyTurns { value } => turns_error(Cow::Borrowed("?"), value, at),
     }
+}
+
+/// The error of a block whose equation `equation` vanishes at every position
+/// ([`BlockFailure::Vanished`]): the parameters given are the fault, not the position, so an
+/// [`Error::InvalidArgument`] naming the loop (the equation `abcd.x` is a projection of the loop
+/// `abcd`) or the equation, where it is, and what to write instead. It was the block's singular
+/// position ("a dead centre or a limit position"). A projection of a loop vanishes where every
+/// link of the loop has length zero (each contributes its length to the magnitude of both
+/// projections) and so does every offset along it: the loop's lengths all zero, or its links
+/// all zero beside an offset across (`(0, e)`), which the message does not call zero.
+fn vanished_error(equation: &str, at: &Location) -> Error {
+    let what = match equation.strip_suffix(".x").or_else(|| equation.strip_suffix(".y")) {
+        Some(name) => format!(
+            "the links of loop `{name}` all have length zero {at}: its equation `{equation}` holds at every position \
+             (each of its terms is zero), so no position of the loop is determined; give the loop's lengths their \
+             values (a parameter left at 0 is one not set)"
+        ),
+        None => format!(
+            "every term of equation `{equation}` is zero {at}: it holds at every position, so it determines none; \
+             give the lengths in it their values (a parameter left at 0 is one not set), or, where they are below \
+             about 1e-162 and their products underflow to zero, give them in a smaller unit (larger numbers)"
+        ),
+    };
+    Error::InvalidArgument(what)
 }
 
 /// [`Error::TooManyTurns`] of the angle `name` at `value`. Public for a mechanism read at run

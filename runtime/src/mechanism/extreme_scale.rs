@@ -64,7 +64,7 @@ use crate::kin::Jac;
 use crate::kinds::QuantityKind;
 use crate::solvers::lu::Lu;
 use crate::solvers::newton::{
-    BlockEval, BlockFailure, Magnitudes, NewtonConfig, NewtonStop, SolveReport, Solved, newton,
+    BlockEval, BlockFailure, Magnitudes, NewtonConfig, NewtonStop, SolveReport, Solved, newton, row_vanishes,
 };
 use core::cell::Cell;
 
@@ -96,6 +96,26 @@ const TWO_480: f64 = (1u128 << 120) as f64 * (1u128 << 120) as f64 * (1u128 << 1
 pub fn to_rescue(scale: &[f64], overflowed: bool) -> bool {
     let size = scale.iter().fold(0.0f64, |s, v| if v.is_finite() { s.max(v.abs()) } else { s });
     overflowed || (size > 0.0 && !(size >= CLOSED_FORM_SIZES.0 && size <= CLOSED_FORM_SIZES.1))
+}
+
+/// The first equation whose terms all vanish at every position ([`BlockFailure::Vanished`]),
+/// given the whole system's magnitudes `scale`, residuals `f` and Jacobian `j` (its rows one
+/// after the other) at a position: its magnitude is exactly zero (a loop's is the sum of its
+/// lengths, so every length of the loop is zero; lengths of `1e-200` make it `1e-200` or more),
+/// and so are its residual and its every derivative there. Asked after a failed solve only (by
+/// the rescue, and by a run-time model's): the closed forms tell such a loop no better than
+/// from a dead centre (a dyad of zero links on coincident centres has every angle, as one of
+/// equal links does) and reported it singular. A magnitude free of the unknowns bounds the terms
+/// at every position, and one that holds a slider coordinate (zero at the position) bounds them
+/// where the coordinate is zero: its derivative by that coordinate is not zero, so its row is not
+/// taken for one that vanishes.
+#[doc(hidden)]
+pub fn vanished_row(scale: &[f64], f: &[f64], j: &[f64]) -> Option<usize> {
+    let n = scale.len();
+    if f.len() != n || j.len() != n * n {
+        return None;
+    }
+    (0..n).find(|&r| row_vanishes(scale[r], f[r], &j[r * n..(r + 1) * n]))
 }
 
 /// What the rescue needs of a mechanism: the kinds of its unknowns (which are angles, whose
@@ -148,8 +168,9 @@ where
         return Err(error);
     }
     match jacobian_to_rescue(m, guess, matches!(error, Error::Overflow { .. })) {
-        Some(jac) => solve_whole(m, guess, cfg, &jac, error),
-        None => Err(error),
+        Ok(Some(jac)) => solve_whole(m, guess, cfg, &jac, error),
+        Ok(None) => Err(error),
+        Err(vanished) => Err((m.fail)(vanished)),
     }
 }
 
@@ -289,7 +310,9 @@ fn block_lu(own: &OwnJacobian, block: &Block) -> Lu<16> {
 }
 
 /// The Jacobian at `guess` when the failure is to be rescued ([`to_rescue`]: its magnitudes
-/// outside [`CLOSED_FORM_SIZES`], or the failure `overflowed`). Its own function, the Jacobian
+/// outside [`CLOSED_FORM_SIZES`], or the failure `overflowed`); or the failure that explains
+/// the kernel's at every size, an equation whose terms all vanish ([`vanished_row`]: a loop of
+/// lengths all zero, which the kernel called singular or not assembled). Its own function, the Jacobian
 /// moved to the heap: for a large mechanism it is big (512 KiB for 256
 /// unknowns), and in an unoptimised build a frame keeps every value it made, so the common case
 /// (an ordinary size, nothing to rescue) must not share one with the whole-system solve.
@@ -298,12 +321,15 @@ fn jacobian_to_rescue<J, A, F, const N: usize, const NI: usize>(
     m: &Whole<J, A, F, N>,
     guess: &[f64; N],
     overflowed: bool,
-) -> Option<Box<Jac<N, NI>>>
+) -> Result<Option<Box<Jac<N, NI>>>, BlockFailure>
 where
     J: Fn(&[f64; N]) -> Jac<N, NI>,
 {
     let jac = Box::new((m.jacobian)(guess));
-    to_rescue(&jac.scale, overflowed).then_some(jac)
+    if let Some(row) = vanished_row(&jac.scale, &jac.f, jac.j.as_flattened()) {
+        return Err(BlockFailure::Vanished { row });
+    }
+    Ok(to_rescue(&jac.scale, overflowed).then_some(jac))
 }
 
 /// [`rescue`]'s Newton over the whole system from `guess`, whose Jacobian is `jac`, and `m`'s
@@ -381,6 +407,7 @@ fn with_row(fail: BlockFailure, mut to: impl FnMut(usize) -> usize) -> BlockFail
         }
         BlockFailure::Underflow { row, magnitude, least } => BlockFailure::Underflow { row: to(row), magnitude, least },
         BlockFailure::Overflow { row } => BlockFailure::Overflow { row: to(row) },
+        BlockFailure::Vanished { row } => BlockFailure::Vanished { row: to(row) },
         other @ (BlockFailure::InvalidConfig { .. } | BlockFailure::TooManyTurns { .. }) => other,
     }
 }

@@ -107,6 +107,7 @@ mod trace;
 
 pub use config::NewtonConfig;
 pub use report::{BlockFailure, NewtonStop, SolveReport, Solved};
+pub(crate) use scales::row_vanishes;
 pub use scales::{BlockEval, Magnitudes, MagnitudesOf};
 
 use crate::solvers::jacobian::BlockJacobian;

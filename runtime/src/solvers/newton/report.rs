@@ -50,6 +50,13 @@ pub enum BlockFailure {
     /// residual that is finite, or a Jacobian entry times its unknown that overflows (see
     /// `scales::overflowed`).
     Overflow { row: usize },
+    /// Every term of row `row` is zero and so is its derivative by every unknown: its magnitude
+    /// (the sum of its lengths) is exactly zero, not underflowed. The equation holds at every
+    /// position and determines none: a loop whose lengths are all zero (parameters left unset).
+    /// Told from a singular position, whose equations vanish at one position only, where the
+    /// magnitudes are found degenerate (see `scales::unjudged_row`) or a failed solve is
+    /// diagnosed (see `vanished_row`).
+    Vanished { row: usize },
 }
 
 /// Why a solve stopped successfully.

@@ -43,7 +43,8 @@ fn iterations_of(fail: &BlockFailure) -> u32 {
         BlockFailure::InvalidConfig { .. }
         | BlockFailure::TooManyTurns { .. }
         | BlockFailure::Underflow { .. }
-        | BlockFailure::Overflow { .. } => 0,
+        | BlockFailure::Overflow { .. }
+        | BlockFailure::Vanished { .. } => 0,
     }
 }
 

@@ -209,9 +209,56 @@ pub(super) fn unjudged_fixed<const N: usize, const K: usize, J: BlockJacobian<N>
     cfg: &NewtonConfig,
 ) -> Option<BlockFailure> {
     match mags.fixed() {
-        Some(m) if m.rows.degenerate => unjudged_row(&m.rows.s, ev, z0, cfg),
+        Some(m) if m.rows.degenerate => unjudged_or_vanished(&m.rows.s, ev, z0, cfg),
         _ => None,
     }
+}
+
+/// [`unjudged_row`] of magnitudes made once for the solve, then [`vanished`]: one out-of-line
+/// call in the inlined [`unjudged_fixed`], as before the second test was added (inlined beside
+/// it, the two calls changed the code generated for the solve's common path: three
+/// instructions a step of the class IV group's point step under callgrind).
+#[cold]
+#[inline(never)]
+fn unjudged_or_vanished<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    scale: &[f64; N],
+    ev: &BlockEval<N, K, J>,
+    z0: &[f64; N],
+    cfg: &NewtonConfig,
+) -> Option<BlockFailure> {
+    unjudged_row(scale, ev, z0, cfg).or_else(|| vanished(scale, ev))
+}
+
+/// The first row of magnitudes made once for the solve, `scale` (degenerate: asked where
+/// [`unjudged_row`] finds none too small or too large), whose terms all vanish at every
+/// position ([`BlockFailure::Vanished`]): its magnitude is exactly zero and, at the evaluation
+/// `ev`, so are its residual and its every derivative ([`row_vanishes`]). Such magnitudes do not
+/// depend on the unknowns, and a magnitude bounds the terms (see [`Magnitudes::rows`]), so the
+/// row is zero wherever the solve goes: a loop whose lengths are all zero, which no position
+/// closes more than another. The solve returned its guess as the root (the residual is zero
+/// there), and the block was reported as its singular position by the analogs (their Jacobian
+/// has a zero row), the diagnosis of a dead centre, where the lengths are unset. Not asked of
+/// magnitudes made from each evaluation: one that is zero at an iterate (a slider at its
+/// pivot beside links of zero length) may not be at the next.
+#[cold]
+#[inline(never)]
+fn vanished<const N: usize, const K: usize, J: BlockJacobian<N>>(
+    scale: &[f64; N],
+    ev: &BlockEval<N, K, J>,
+) -> Option<BlockFailure> {
+    let j = ev.j.to_dense();
+    (0..N).find(|&r| row_vanishes(scale[r], ev.f[r], &j[r])).map(|row| BlockFailure::Vanished { row })
+}
+
+/// Whether a row of magnitude `scale`, residual `f` and Jacobian row `j` has terms that all
+/// vanish: each exactly zero. A magnitude that underflowed to zero is told apart by
+/// [`unjudged_row`] first (its terms in an unknown, a Jacobian entry times the unknown, are not
+/// zero), and lengths that are tiny but not zero (`1e-200`) make a loop's magnitude, the sum of
+/// their absolute values, no smaller than the longest of them: not zero. (A row whose terms are
+/// products of lengths below about `1e-162` with derivatives that underflowed too is not told
+/// from one whose lengths are zero; its message says so.)
+pub(crate) fn row_vanishes(scale: f64, f: f64, j: &[f64]) -> bool {
+    scale == 0.0 && f == 0.0 && j.iter().all(|&v| v == 0.0)
 }
 
 /// [`unjudged`] of degenerate magnitudes `scale` (as given, before the row sums replace them):
@@ -456,6 +503,47 @@ mod tests {
         let log = |z: &[f64; 1]| varying::<1, 2>([z[0].ln()], [[1.0 / z[0]]], [z[0].ln().abs()], [1.0]);
         let (s, ev) = solve([1.0], &cfg, log).unwrap();
         assert_eq!((s.z, ev.keep[0]), ([1.0], 0.0));
+    }
+
+    /// A loop of two links from a pivot to a point, `a @ q0 + b @ q1 == (d, e)`, its
+    /// magnitudes made once (`|a| + |b| + |d|` and `|a| + |b| + |e|`, as the generated code
+    /// makes them), at size `k`: at `k = 0` every term and derivative of both rows vanishes,
+    /// and the solve is refused as such from every guess (row 0, the first); the block's own
+    /// solve returned the guess `[0.2, 1]` as its root (the residual is zero there), which the generated
+    /// code's analogs then found singular. Lengths of `1e-200`, tiny but not zero,
+    /// are judged in magnitudes of their own size and solve, to the angles of size 1 within
+    /// `1e-12` rad (the residual tolerance: the loop of size 1 closes within it); subnormal ones
+    /// (`1e-310`) are refused as too small to judge, as before.
+    #[test]
+    fn a_loop_whose_lengths_are_all_zero_vanishes() {
+        let cfg = NewtonConfig::default();
+        let two_links = |k: f64| {
+            let [a, b, d, e] = [2.0, 1.5, 2.5, 1.0].map(|l| l * k);
+            move |z: &[f64; 2]| {
+                let ([s0, c0], [s1, c1]) = (z[0].sin_cos().into(), z[1].sin_cos().into());
+                BlockEval::<2, 0> {
+                    f: [a * c0 + b * c1 - d, a * s0 + b * s1 - e],
+                    j: [[-a * s0, -b * s1], [a * c0, b * c1]],
+                    keep: [],
+                }
+            }
+        };
+        let solve_at = |k: f64, guess: [f64; 2]| {
+            let once = Magnitudes::new([2.0 + 1.5 + 2.5, 2.0 + 1.5 + 1.0].map(|m| m * k), [1.0; 2]);
+            let eval = two_links(k);
+            let mut ev = eval(&guess);
+            newton(guess, &mut ev, &cfg, in_place(eval), &once).map(|s| s.z)
+        };
+        for guess in [[0.2, 1.0], [-2.0, 3.0], [0.0, 0.0]] {
+            assert_eq!(solve_at(0.0, guess), Err(BlockFailure::Vanished { row: 0 }), "{guess:?}");
+            let one = solve_at(1.0, guess).unwrap();
+            let tiny = solve_at(1e-200, guess).unwrap_or_else(|e| panic!("{guess:?}: {e:?}"));
+            for (t, o) in tiny.iter().zip(one) {
+                assert!((t - o).abs() <= 1e-12, "{guess:?}: {tiny:?} against {one:?}");
+            }
+            let fail = solve_at(1e-310, guess).unwrap_err();
+            assert!(matches!(fail, BlockFailure::Underflow { .. }), "{guess:?}: {fail:?}");
+        }
     }
 
     /// Magnitudes made once for the solve (as the generated code makes those free of the
