@@ -269,7 +269,23 @@ pub fn closed_error() -> std::io::Error {
     )
 }
 
-/// A unit written after a number in a message: ` deg`, or nothing for a quantity without one.
+/// A unit written after a number in a message: ` deg`, or nothing for a quantity without one,
+/// a pure number's `1` included (a table's header writes `h [1]`, but "stands still at 0 1"
+/// read as two numbers).
 pub fn unit_suffix(unit: &str) -> String {
-    if unit.is_empty() { String::new() } else { format!(" {unit}") }
+    if unit.is_empty() || unit == "1" { String::new() } else { format!(" {unit}") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::unit_suffix;
+
+    /// A unit follows its number after a space; a pure number's `1` is not written after one.
+    #[test]
+    fn a_pure_number_has_no_unit_after_it() {
+        assert_eq!(unit_suffix("deg"), " deg");
+        assert_eq!(unit_suffix("length unit"), " length unit");
+        assert_eq!(unit_suffix("1"), "");
+        assert_eq!(unit_suffix(""), "");
+    }
 }
