@@ -352,10 +352,7 @@ impl Pending {
 /// stiffness, a pressure, an area) carry no declared unit, so whether it is a force or a torque
 /// at all cannot be judged.
 fn load_law(lw: &mut Lowerer, value: &Expr) -> Option<Val> {
-    lw.notes_sums = true;
-    let lowered = lw.lower(value);
-    lw.notes_sums = false;
-    lowered
+    lw.noting_sums(|lw| lw.lower(value))
 }
 
 /// A mass or a moment of inertia: a scalar of the parameters, not a negative constant.

@@ -389,6 +389,15 @@ impl Lowerer {
         v
     }
 
+    /// `f` run with its sums noted in `scalar_pairs`, as an equation's are (a `let`, a `point`,
+    /// an `output`, a force's or a torque's law).
+    pub(super) fn noting_sums<T>(&mut self, f: impl FnOnce(&mut Self) -> T) -> T {
+        let outer = std::mem::replace(&mut self.notes_sums, true);
+        let v = f(self);
+        self.notes_sums = outer;
+        v
+    }
+
     /// A constant scalar (a parameter's default value).
     pub(super) fn constant(&mut self, e: &Expr, what: &str) -> Option<NodeId> {
         let v = self.lower_scalar(e, what)?;

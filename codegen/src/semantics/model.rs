@@ -359,9 +359,8 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
         }
         ItemKind::Decls(..) => {}
         ItemKind::Let { name, value } => {
-            lw.notes_sums = true;
-            let lowered = lw.lower_in(Place::Let(super::scope::key(name)), |lw| lw.lower_definition(name, value));
-            lw.notes_sums = false;
+            let place = Place::Let(super::scope::key(name));
+            let lowered = lw.noting_sums(|lw| lw.lower_in(place, |lw| lw.lower_definition(name, value)));
             if matches!(lowered, Some(Val::S(_))) && lw.in_degrees(value) {
                 lw.degree_lets.insert(super::scope::key(name));
             }
@@ -378,14 +377,10 @@ fn lower_item(lw: &mut Lowerer, g: &Globals, item: &Item, out: &mut Lowered) {
             }
         }
         ItemKind::Point { name, value } => {
-            lw.notes_sums = true;
-            lower_point(lw, item, name, value, out);
-            lw.notes_sums = false;
+            lw.noting_sums(|lw| lower_point(lw, item, name, value, out));
         }
         ItemKind::Output { name, value } => {
-            lw.notes_sums = true;
-            lower_output(lw, item, name, value, out);
-            lw.notes_sums = false;
+            lw.noting_sums(|lw| lower_output(lw, item, name, value, out));
         }
         ItemKind::Loop { name, lhs, rhs, eq } | ItemKind::Eq { name, lhs, rhs, eq } => {
             lw.in_equation = true;
