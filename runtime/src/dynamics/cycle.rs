@@ -10,7 +10,7 @@ use crate::dims::{Dims, KinState};
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel};
-use crate::paths::collected::MAX_COLLECTED_BYTES;
+use crate::paths::collected::{MAX_COLLECTED_BYTES, within};
 use crate::paths::sweep::SweepOf;
 use std::f64::consts::TAU;
 
@@ -324,9 +324,10 @@ pub fn each_turn_state<K: Kernel>(
 /// (8 GB) or states (tens of GB) grew until an allocation failed and aborted the process. Refused
 /// before the turn is swept; fewer samples than `MAX_SAMPLES` are refused by this alone.
 fn check_kept(samples: usize, bytes_each: usize, why: &'static str) -> Result<(), DynamicsError> {
-    match samples.checked_mul(bytes_each) {
-        Some(total) if total <= MAX_COLLECTED_BYTES => Ok(()),
-        _ => Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why }),
+    if within(samples, bytes_each, MAX_COLLECTED_BYTES) {
+        Ok(())
+    } else {
+        Err(DynamicsError::BadValue { what: "samples", value: samples as f64, why })
     }
 }
 

@@ -33,6 +33,12 @@ pub(crate) fn check_collected(
     check_collected_within(what, kept, count, bytes_each, instead, MAX_COLLECTED_BYTES)
 }
 
+/// Whether `count` items of `bytes_each` bytes fit in `budget` bytes (a count whose total
+/// overflows does not): the test of [`check_collected`], for a caller whose error is its own.
+pub(crate) fn within(count: usize, bytes_each: usize, budget: usize) -> bool {
+    count.checked_mul(bytes_each).is_some_and(|total| total <= budget)
+}
+
 /// [`check_collected`] against a `budget` of bytes (tested with a small one); the message names
 /// [`MAX_COLLECTED_BYTES`], the budget of every caller but a test.
 pub(crate) fn check_collected_within(
@@ -43,10 +49,10 @@ pub(crate) fn check_collected_within(
     instead: &str,
     budget: usize,
 ) -> Result<(), Error> {
-    let total = count.saturating_mul(bytes_each);
-    if total <= budget {
+    if within(count, bytes_each, budget) {
         return Ok(());
     }
+    let total = count.saturating_mul(bytes_each);
     Err(Error::InvalidArgument(format!(
         "{what} would keep {count} {kept} of {bytes_each} bytes ({:.1} GB), beyond the {} GiB kept in memory at \
          most (`paths::collected::MAX_COLLECTED_BYTES`): {instead}",
