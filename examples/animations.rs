@@ -12,6 +12,9 @@
 //! input, live readouts with units, charts whose cursor follows the slider, and the sweep's
 //! limit positions marked on the slider's track.
 //!
+//! `examples/tests/animations.rs` checks that the committed `docs/animations` and `docs/pages`
+//! are what this example writes now: regenerate them after a change to a drawing.
+//!
 //! The five-bar's page has two inputs: it holds a grid of both cranks' angles, with one slider
 //! per crank (`html_grid`).
 //!
@@ -152,10 +155,11 @@ fn limit_position() -> Result<(DefaultDrawing, Motion), Box<dyn Error>> {
     Ok((four_bar(&m)?, Motion::record(&m, m.sweep(0.0, PI, 181, &g)?)?))
 }
 
-fn write(dir: &Path, name: &str, svg: &str) -> Result<(), Box<dyn Error>> {
-    let path = dir.join(format!("{name}.svg"));
-    std::fs::write(&path, svg)?;
-    println!("{:>7} bytes  {}", svg.len(), path.display());
+/// Writes the file `name` (an animation or a page) into `dir`.
+fn write(dir: &Path, name: &str, text: &str) -> Result<(), Box<dyn Error>> {
+    let path = dir.join(name);
+    std::fs::write(&path, text)?;
+    println!("{:>7} bytes  {}", text.len(), path.display());
     Ok(())
 }
 
@@ -171,9 +175,9 @@ struct Show {
     exposures: bool,
 }
 
-fn main() -> Result<(), Box<dyn Error>> {
-    let dir = std::env::args_os().nth(1).map_or_else(|| PathBuf::from("out/animations"), PathBuf::from);
-    std::fs::create_dir_all(&dir)?;
+/// The animated SVGs of the gallery, as `(file name, contents)`: one `<name>.svg` per mechanism,
+/// and `<name>_exposures.svg` for those shown as a multi-exposure too.
+pub fn animations() -> Result<Vec<(String, String)>, Box<dyn Error>> {
     let show = |name, scene: Scene, turn, exposures| Show { name, scene, turn, exposures };
     let shows = [
         show("rhombic_drive", rhombic_drive, true, false),
@@ -188,32 +192,36 @@ fn main() -> Result<(), Box<dyn Error>> {
         show("cam_linkage", cam_linkage, true, false),
         show("dwell_cam", dwell_cam, true, false),
     ];
+    let mut files = Vec::new();
     for s in shows {
         let (drawing, motion) = (s.scene)()?;
         let anim = Animation { frames: 90, seconds: 6.0, back_and_forth: !s.turn };
-        write(&dir, s.name, &drawing.animate(&motion, &anim)?)?;
+        files.push((format!("{}.svg", s.name), drawing.animate(&motion, &anim)?));
         if s.exposures {
-            write(&dir, &format!("{}_exposures", s.name), &drawing.exposures(&motion, 8)?)?;
+            files.push((format!("{}_exposures.svg", s.name), drawing.exposures(&motion, 8)?));
         }
     }
+    Ok(files)
+}
+
+fn main() -> Result<(), Box<dyn Error>> {
+    let dir = std::env::args_os().nth(1).map_or_else(|| PathBuf::from("out/animations"), PathBuf::from);
     // The pages go beside the animations' folder (`docs/animations` -> `docs/pages`), or
     // into the folder given second.
     let pages_dir =
         std::env::args_os().nth(2).map_or_else(|| dir.parent().unwrap_or(Path::new(".")).join("pages"), PathBuf::from);
-    std::fs::create_dir_all(&pages_dir)?;
-    pages(&pages_dir)
-}
-
-/// Writes `<name>.html`.
-fn write_page(dir: &Path, name: &str, page: &str) -> Result<(), Box<dyn Error>> {
-    let path = dir.join(format!("{name}.html"));
-    std::fs::write(&path, page)?;
-    println!("{:>7} bytes  {}", page.len(), path.display());
+    for (folder, files) in [(dir, animations()?), (pages_dir, pages()?)] {
+        std::fs::create_dir_all(&folder)?;
+        for (name, text) in files {
+            write(&folder, &name, &text)?;
+        }
+    }
     Ok(())
 }
 
 /// The interactive pages: the same drawings and sweeps, with the readouts worth watching.
-fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
+pub fn pages() -> Result<Vec<(String, String)>, Box<dyn Error>> {
+    let mut files = Vec::new();
     let (d, motion) = rhombic_drive()?;
     let config = HtmlConfig::new("Rhombic drive (paper 000, Fig. 1)")
         .show(RhombicDrive::COL.x_c)
@@ -221,30 +229,31 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
         .with_readout(Readout::column(RhombicDrive::COL.phi2).without_chart())
         .with_readout(Readout::column(RhombicDrive::COL.phi4).without_chart())
         .with_readout(Readout::column(RhombicDrive::COL.gap).without_chart());
-    write_page(dir, "rhombic_drive", &html(&RhombicDrive::default(), &d.clone().into_drawing(), &motion, &config)?)?;
+    files.push((
+        "rhombic_drive.html".into(),
+        html(&RhombicDrive::default(), &d.clone().into_drawing(), &motion, &config)?,
+    ));
     let (d, motion) = displacer_rod_drive()?;
     let config = HtmlConfig::new("Developed displacer rod (paper 000, Fig. 2)")
         .show(DisplacerRodDrive::COL.x_c)
         .show(DisplacerRodDrive::COL.x_f);
-    write_page(
-        dir,
-        "displacer_rod_drive",
-        &html(&DisplacerRodDrive::default(), &d.clone().into_drawing(), &motion, &config)?,
-    )?;
+    files.push((
+        "displacer_rod_drive.html".into(),
+        html(&DisplacerRodDrive::default(), &d.clone().into_drawing(), &motion, &config)?,
+    ));
     let (d, motion) = working_rod_drive()?;
     let config = HtmlConfig::new("Developed working rod (paper 000, Fig. 3)")
         .show(WorkingRodDrive::COL.x_c)
         .show(WorkingRodDrive::COL.x_f);
-    write_page(
-        dir,
-        "working_rod_drive",
-        &html(&WorkingRodDrive::default(), &d.clone().into_drawing(), &motion, &config)?,
-    )?;
+    files.push((
+        "working_rod_drive.html".into(),
+        html(&WorkingRodDrive::default(), &d.clone().into_drawing(), &motion, &config)?,
+    ));
     let (d, motion) = gear_lever()?;
     let config = HtmlConfig::new("Gear-lever drive (paper 001)")
         .show(GearLever::COL.phi)
         .with_readout(Readout::column(GearLever::COL.s).without_chart());
-    write_page(dir, "gear_lever", &html(&GearLever::default(), &d.clone().into_drawing(), &motion, &config)?)?;
+    files.push(("gear_lever.html".into(), html(&GearLever::default(), &d.clone().into_drawing(), &motion, &config)?));
     let (d, motion) = roller_edger()?;
     let time = Kind::Other { quantity: "time".into(), unit: "s".into() };
     let config = HtmlConfig::new("Roller edger (paper 002)")
@@ -253,28 +262,30 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
         .with_readout(Readout::column(RollerEdger::COL.phi1).without_chart())
         .with_readout(Readout::column(RollerEdger::COL.phi2).without_chart())
         .with_back_and_forth(true);
-    write_page(dir, "roller_edger", &html(&RollerEdger::default(), &d.clone().into_drawing(), &motion, &config)?)?;
+    files.push((
+        "roller_edger.html".into(),
+        html(&RollerEdger::default(), &d.clone().into_drawing(), &motion, &config)?,
+    ));
     let (d, motion) = class_four()?;
     let config = HtmlConfig::new("Class IV mechanism (paper 003)").show(ClassFour::COL.th1).show(ClassFour::COL.th2);
-    write_page(dir, "class_four", &html(&ClassFour::default(), &d.clone().into_drawing(), &motion, &config)?)?;
+    files.push(("class_four.html".into(), html(&ClassFour::default(), &d.clone().into_drawing(), &motion, &config)?));
     let (d, motion) = coupler_curve()?;
     let config = HtmlConfig::new("Crank-rocker four-bar: coupler curve of P")
         .show(CouplerFourBar::COL.gamma)
         .show(CouplerFourBar::COL.p.y)
         .with_readout(Readout::column(CouplerFourBar::COL.beta).without_chart())
         .with_readout(Readout::column(CouplerFourBar::COL.p.x).without_chart());
-    write_page(
-        dir,
-        "four_bar_coupler",
-        &html(&CouplerFourBar::default(), &d.clone().into_drawing(), &motion, &config)?,
-    )?;
+    files.push((
+        "four_bar_coupler.html".into(),
+        html(&CouplerFourBar::default(), &d.clone().into_drawing(), &motion, &config)?,
+    ));
     let (d, motion) = limit_position()?;
     let m = CouplerFourBar { r: 3.0, l: 2.0, k: 2.5, d: 4.0, e: 1.2, delta: 0.9 };
     let config = HtmlConfig::new("Non-Grashof four-bar: the sweep stops at the limit position")
         .show(CouplerFourBar::COL.gamma)
         .with_readout(Readout::column(CouplerFourBar::COL.beta).without_chart())
         .with_back_and_forth(true);
-    write_page(dir, "four_bar_limit", &html(&m, &d.clone().into_drawing(), &motion, &config)?)?;
+    files.push(("four_bar_limit.html".into(), html(&m, &d.clone().into_drawing(), &motion, &config)?));
     let (d, motion) = cam_linkage()?;
     let config = HtmlConfig::new("Cam-linkage drive: disc cam, roller on a bell-crank rocker, rod and slider")
         .show(CamLinkage::COL.psi)
@@ -282,7 +293,7 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
         .show(CamLinkage::COL.pressure)
         .with_readout(Readout::column(CamLinkage::COL.beta).without_chart())
         .with_length_unit("mm");
-    write_page(dir, "cam_linkage", &html(&CamLinkage::default(), &d.clone().into_drawing(), &motion, &config)?)?;
+    files.push(("cam_linkage.html".into(), html(&CamLinkage::default(), &d.clone().into_drawing(), &motion, &config)?));
     let (d, motion) = dwell_cam()?;
     let config = HtmlConfig::new("Dwell cam: 3-4-5 rise-dwell-return-dwell, follower swinging a rocker")
         .with_readout(Readout::column(DwellCamRocker::COL.phi).without_chart())
@@ -290,7 +301,10 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
         .show(DwellCamRocker::COL.psi)
         .with_readout(Readout::column(DwellCamRocker::COL.gamma).without_chart())
         .with_length_unit("mm");
-    write_page(dir, "dwell_cam", &html(&DwellCamRocker::default(), &d.clone().into_drawing(), &motion, &config)?)?;
+    files.push((
+        "dwell_cam.html".into(),
+        html(&DwellCamRocker::default(), &d.clone().into_drawing(), &motion, &config)?,
+    ));
     // Two inputs: a grid of both cranks over a turn each (25 x 25 cells), one slider per crank;
     // where the links cannot reach each other the page says so.
     let m = FiveBar::default();
@@ -301,5 +315,6 @@ fn pages(dir: &Path) -> Result<(), Box<dyn Error>> {
         .show(FiveBar::COL.pc.y)
         .show(FiveBar::COL.spread)
         .with_autoplay(false);
-    write_page(dir, "five_bar", &html_grid(&m, &m.drawing().into_drawing(), &grid, &config)?)
+    files.push(("five_bar.html".into(), html_grid(&m, &m.drawing().into_drawing(), &grid, &config)?));
+    Ok(files)
 }
