@@ -25,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("Roller edger, lever-turning mode (paper 002): {m:?}\n");
     let states: Vec<_> = m.sweep(0.0, 6.0, 601, &m.guess(0.0))?.collect::<Result<_, _>>()?;
     println!(
-        "{:>5} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>11} {:>11}",
+        "{:>5} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}",
         "t [s]",
         "phi1 [°]",
         "phi3 [°]",
@@ -36,11 +36,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "w2 [1/s]",
         "w4 [1/s]",
         "e1 [1/s2]",
-        "e3 [1/s2]"
+        "e3 [1/s2]",
+        "e2 [1/s2]",
+        "e4 [1/s2]"
     );
     for s in states.iter().step_by(50) {
         println!(
-            "{:>5.1} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>10.6} {:>10.6} {:>10.6} {:>10.6} {:>11.3e} {:>11.3e}",
+            "{:>5.1} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>10.6} {:>10.6} {:>10.6} {:>10.6} \
+             {:>10.3e} {:>10.3e} {:>10.3e} {:>10.3e}",
             s.input.t,
             s.q.phi1.to_degrees(),
             s.q.phi3.to_degrees(),
@@ -52,6 +55,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s.dq.phi4,
             s.d2q.phi1,
             s.d2q.phi3,
+            s.d2q.phi2,
+            s.d2q.phi4,
         );
     }
 
