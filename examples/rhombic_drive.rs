@@ -67,10 +67,39 @@ fn print_table(states: &[RhombicDriveState]) {
     }
 }
 
-/// Extreme positions, strokes and phase shifts against the closed forms.
-fn report_extremes(drive: &RhombicDrive) -> Result<()> {
-    // Extreme positions, located as roots of the velocity analogs (dX/dphi1 = 0) on a sweep of
-    // one turn, against the closed forms: crank and rod stretched (outer) or folded (inner).
+/// An extreme position of a piston: located along the sweep as a root of its velocity analog,
+/// and by the closed form (crank arm and rod stretched or folded). Angles in degrees, in
+/// `[0, 360)`.
+#[derive(Clone, Copy, Debug)]
+pub struct DeadCentre {
+    /// Which piston and which extreme.
+    pub name: &'static str,
+    /// The position located along the sweep.
+    pub value: f64,
+    /// The crank angle there.
+    pub at: f64,
+    /// The closed form's position.
+    pub closed: f64,
+    /// The closed form's crank angle.
+    pub closed_at: f64,
+}
+
+/// The pistons' extremes and the phase shifts between them, located and in closed form.
+#[derive(Clone, Copy, Debug)]
+pub struct Extremes {
+    /// X_C min (outer), X_C max (inner), X_F max (outer, the paper's X_F0), X_F min (inner,
+    /// X_Fmin).
+    pub rows: [DeadCentre; 4],
+    /// Crank angle from the piston's outer extreme to the displacer's, and from the inner to
+    /// the inner (degrees, in `[0, 360)`), located.
+    pub shift: [f64; 2],
+    /// The same from the closed forms' crank angles.
+    pub closed_shift: [f64; 2],
+}
+
+/// Extreme positions, located as roots of the velocity analogs (dX/dphi1 = 0) on a sweep of one
+/// turn, against the closed forms: crank and rod stretched (outer) or folded (inner).
+pub fn extremes(drive: &RhombicDrive) -> Result<Extremes> {
     let turn = drive.sampled(0.0, TAU, 361, &drive.guess(0.0))?;
     let xc = turn.range(RhombicDrive::COL.x_c)?;
     let xf = turn.range(RhombicDrive::COL.x_f)?;
@@ -82,32 +111,53 @@ fn report_extremes(drive: &RhombicDrive) -> Result<()> {
     // Crank angles there: arm AB points from A = (0, e_P) at C (outer) or away from it (inner);
     // arm AD likewise towards F = (X_F, de).
     let deg = |a: f64| a.to_degrees().rem_euclid(360.0);
-    let at_c_outer = deg(f64::atan2(-drive.e_p, x_c_outer));
-    let at_c_inner = deg(f64::atan2(drive.e_p, -x_c_inner));
-    let at_f_outer = deg(f64::atan2(-e_b, x_f0) - drive.gamma);
-    let at_f_inner = deg(f64::atan2(e_b, -x_fmin) - drive.gamma);
-    println!("\nextreme positions (roots of the velocity analogs) vs closed forms:");
-    let show = |name: &str, v: f64, at: f64, closed: f64, closed_at: f64| {
-        println!(
-            "  {name:<20} {v:>16.12} at phi1 = {:>9.5}°   closed form {closed:>16.12} at {closed_at:>9.5}°   (diff {:.1e})",
-            deg(at),
-            (v - closed).abs()
-        )
+    let at_c_outer = f64::atan2(-drive.e_p, x_c_outer);
+    let at_c_inner = f64::atan2(drive.e_p, -x_c_inner);
+    let at_f_outer = f64::atan2(-e_b, x_f0) - drive.gamma;
+    let at_f_inner = f64::atan2(e_b, -x_fmin) - drive.gamma;
+    let row = |name, e: kinloop::analysis::Jet, closed, closed_at| DeadCentre {
+        name,
+        value: e.value,
+        at: deg(e.x),
+        closed,
+        closed_at: deg(closed_at),
     };
-    show("X_C min (outer)", xc.min.value, xc.min.x, x_c_outer, at_c_outer);
-    show("X_C max (inner)", xc.max.value, xc.max.x, x_c_inner, at_c_inner);
-    show("X_F max = X_F0", xf.max.value, xf.max.x, x_f0, at_f_outer);
-    show("X_F min = X_Fmin", xf.min.value, xf.min.x, x_fmin, at_f_inner);
-    println!("piston stroke    {:.12} (closed form {:.12})", xc.span(), x_c_inner - x_c_outer);
-    println!("displacer stroke {:.12} (closed form {:.12})", xf.span(), x_f0 - x_fmin);
-    // Phase shift: crank angle from the piston's extreme to the displacer's corresponding one
-    // (outer to outer, inner to inner: both pistons farthest from, or nearest to, the crank).
-    let shift_outer = deg(xf.max.x - xc.min.x);
-    let shift_inner = deg(xf.min.x - xc.max.x);
+    Ok(Extremes {
+        rows: [
+            row("X_C min (outer)", xc.min, x_c_outer, at_c_outer),
+            row("X_C max (inner)", xc.max, x_c_inner, at_c_inner),
+            row("X_F max = X_F0", xf.max, x_f0, at_f_outer),
+            row("X_F min = X_Fmin", xf.min, x_fmin, at_f_inner),
+        ],
+        // Phase shift: crank angle from the piston's extreme to the displacer's corresponding
+        // one (outer to outer, inner to inner: both pistons farthest from, or nearest to, the
+        // crank).
+        shift: [deg(xf.max.x - xc.min.x), deg(xf.min.x - xc.max.x)],
+        closed_shift: [deg(at_f_outer - at_c_outer), deg(at_f_inner - at_c_inner)],
+    })
+}
+
+/// Prints the extremes, strokes and phase shifts against the closed forms.
+fn report_extremes(drive: &RhombicDrive) -> Result<()> {
+    let e = extremes(drive)?;
+    println!("\nextreme positions (roots of the velocity analogs) vs closed forms:");
+    for r in e.rows {
+        println!(
+            "  {:<20} {:>16.12} at phi1 = {:>9.5}°   closed form {:>16.12} at {:>9.5}°   (diff {:.1e})",
+            r.name,
+            r.value,
+            r.at,
+            r.closed,
+            r.closed_at,
+            (r.value - r.closed).abs()
+        );
+    }
+    let [c_min, c_max, f_max, f_min] = e.rows;
+    println!("piston stroke    {:.12} (closed form {:.12})", c_max.value - c_min.value, c_max.closed - c_min.closed);
+    println!("displacer stroke {:.12} (closed form {:.12})", f_max.value - f_min.value, f_max.closed - f_min.closed);
     println!(
-        "phase shift of the extremes: outer {shift_outer:.6}° (closed form {:.6}°), inner {shift_inner:.6}° (closed form {:.6}°)",
-        deg((at_f_outer - at_c_outer).to_radians()),
-        deg((at_f_inner - at_c_inner).to_radians())
+        "phase shift of the extremes: outer {:.6}° (closed form {:.6}°), inner {:.6}° (closed form {:.6}°)",
+        e.shift[0], e.closed_shift[0], e.shift[1], e.closed_shift[1]
     );
     Ok(())
 }
