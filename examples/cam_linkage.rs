@@ -53,8 +53,28 @@ fn main() -> Result<()> {
     write_outputs(&states)
 }
 
-/// Swing and stroke from the sweep against the limit positions of the equivalent four-bar.
-fn report_extremes(m: &CamLinkage) -> Result<()> {
+/// An extreme of the rocker's angle or of the slider's position over a turn: located along the
+/// sweep as a root of its velocity analog, and at a limit position of the equivalent four-bar.
+/// Angles in degrees (cam angles in `[0, 360)`), positions in millimetres.
+#[derive(Clone, Copy, Debug)]
+pub struct Limit {
+    /// Which quantity and which extreme.
+    pub name: &'static str,
+    /// The unit of `value` and `closed`.
+    pub unit: &'static str,
+    /// The extreme located along the sweep.
+    pub value: f64,
+    /// The cam angle there.
+    pub at: f64,
+    /// The extreme at the four-bar's limit position.
+    pub closed: f64,
+    /// The cam angle of that limit position.
+    pub closed_at: f64,
+}
+
+/// The rocker's largest and smallest angle and the slider's largest and smallest position, in
+/// that order, against the limit positions of the equivalent four-bar.
+pub fn extremes(m: &CamLinkage) -> Result<[Limit; 4]> {
     let turn = m.sampled(0.0, TAU, 361, &m.guess(0.0))?;
     let swing = turn.range(CamLinkage::COL.psi)?;
     let stroke = turn.range(CamLinkage::COL.x)?;
@@ -78,22 +98,42 @@ fn report_extremes(m: &CamLinkage) -> Result<()> {
     // (rocker angle, cam angle) at the stretched and the folded limit position, the larger first.
     let (out, inn) = ((psi_out, at_out), (psi_in, at_in + PI));
     let (hi, lo) = if psi_out > psi_in { (out, inn) } else { (inn, out) };
-    println!("\nextremes (roots of the velocity analogs) vs the four-bar's limit positions:");
-    let show = |name: &str, unit: &str, v: f64, at: f64, closed: f64, closed_at: f64| {
-        println!(
-            "  {name:<15} {v:>14.9}{unit} at {:>9.5}°   closed form {closed:>14.9}{unit} at {:>9.5}°",
-            deg(at),
-            deg(closed_at)
-        )
-    };
     let (x_hi, x_lo) = (slider(hi.0), slider(lo.0));
     let (x_max, x_min) = if x_hi > x_lo { ((x_hi, hi.1), (x_lo, lo.1)) } else { ((x_lo, lo.1), (x_hi, hi.1)) };
-    show("rocker psi max", "°", swing.max.value.to_degrees(), swing.max.x, hi.0.to_degrees(), hi.1);
-    show("rocker psi min", "°", swing.min.value.to_degrees(), swing.min.x, lo.0.to_degrees(), lo.1);
-    show("slider x max", " mm", stroke.max.value, stroke.max.x, x_max.0, x_max.1);
-    show("slider x min", " mm", stroke.min.value, stroke.min.x, x_min.0, x_min.1);
-    println!("rocker swing  {:.9}° (closed form {:.9}°)", swing.span().to_degrees(), (hi.0 - lo.0).to_degrees());
-    println!("slider stroke {:.9} mm (closed form {:.9} mm)", stroke.span(), x_max.0 - x_min.0);
+    let row = |name, unit, value: f64, at: f64, closed: f64, closed_at: f64| Limit {
+        name,
+        unit,
+        value,
+        at: deg(at),
+        closed,
+        closed_at: deg(closed_at),
+    };
+    Ok([
+        row("rocker psi max", "°", swing.max.value.to_degrees(), swing.max.x, hi.0.to_degrees(), hi.1),
+        row("rocker psi min", "°", swing.min.value.to_degrees(), swing.min.x, lo.0.to_degrees(), lo.1),
+        row("slider x max", " mm", stroke.max.value, stroke.max.x, x_max.0, x_max.1),
+        row("slider x min", " mm", stroke.min.value, stroke.min.x, x_min.0, x_min.1),
+    ])
+}
+
+/// Prints the swing and the stroke from the sweep against the limit positions of the
+/// equivalent four-bar.
+fn report_extremes(m: &CamLinkage) -> Result<()> {
+    let rows = extremes(m)?;
+    println!("\nextremes (roots of the velocity analogs) vs the four-bar's limit positions:");
+    for r in rows {
+        println!(
+            "  {:<15} {:>14.9}{} at {:>9.5}°   closed form {:>14.9}{} at {:>9.5}°",
+            r.name, r.value, r.unit, r.at, r.closed, r.unit, r.closed_at
+        );
+    }
+    let [psi_max, psi_min, x_max, x_min] = rows;
+    println!(
+        "rocker swing  {:.9}° (closed form {:.9}°)",
+        psi_max.value - psi_min.value,
+        psi_max.closed - psi_min.closed
+    );
+    println!("slider stroke {:.9} mm (closed form {:.9} mm)", x_max.value - x_min.value, x_max.closed - x_min.closed);
     Ok(())
 }
 
