@@ -14,37 +14,62 @@ use kinloop::{AtSingular, SweepConfig};
 use kinloop_fixtures::{FourBar, FourBarUnknowns};
 use std::f64::consts::PI;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    // s + l = 2 + 4 > p + q = 2.5 + 3: non-Grashof.
-    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+/// What the example finds of a four-bar whose input link cannot turn fully, swept from 0
+/// towards pi on the assembly mode of its declared guess.
+pub struct Limits {
+    /// Why the sweep stopped, as it says.
+    pub stopped: Option<String>,
+    /// The last sample the sweep reached.
+    pub last: f64,
+    /// The sweep's events: kind, the located input, and the coupler and rocker angles there.
+    pub events: Vec<(kinloop::EventKind, f64, [f64; 2])>,
+    /// The limit position by the law of cosines: coupler and rocker stretched, `|BD| = b + c`.
+    pub law: f64,
+    /// The reachable input range on this assembly mode.
+    pub reach: [f64; 2],
+    /// The closed curve traced by continuation through both limits.
+    pub traced: kinloop::Traced<2, 1>,
+}
+
+/// Sweeps `m` from 0 towards pi, finds its reachable range, and traces its whole curve.
+pub fn limits(m: &FourBar) -> Result<Limits, Box<dyn std::error::Error>> {
     let g = m.position(0.0, &m.guess(0.0))?.0;
-    println!("Non-Grashof four-bar {m:?}");
     let mut sweep = m.sweep(0.0, PI, 37, &g)?;
-    let mut last = 0.0;
+    let (mut stopped, mut last) = (None, 0.0);
     for state in &mut sweep {
         match state {
             Ok(s) => last = s.input.phi,
-            Err(e) => println!("  sweep 0 -> pi stopped: {e}"),
+            Err(e) => stopped = Some(e.to_string()),
         }
     }
+    let events = sweep.events().iter().map(|ev| (ev.kind, ev.x[0], [ev.q[0], ev.q[1]])).collect();
+    let law = ((m.a * m.a + m.d * m.d - (m.b + m.c).powi(2)) / (2.0 * m.a * m.d)).acos();
+    let reach = m.reachable(0.0, PI, &g, 91)?;
+    let traced = m.trace_curve(0.0, PI, &g, &kinloop::TraceConfig::default())?;
+    Ok(Limits { stopped, last, events, law, reach: [reach.from.phi, reach.to.phi], traced })
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    // s + l = 2 + 4 > p + q = 2.5 + 3: non-Grashof.
+    let m = FourBar { a: 3.0, b: 2.0, c: 2.5, d: 4.0 };
+    println!("Non-Grashof four-bar {m:?}");
+    let found = limits(&m)?;
+    if let Some(e) = &found.stopped {
+        println!("  sweep 0 -> pi stopped: {e}");
+    }
+    let last = found.last;
     println!("  last sample reached: phi = {:.6} rad ({:.3} deg)", last, last.to_degrees());
-    for ev in sweep.events() {
-        let law = ((m.a * m.a + m.d * m.d - (m.b + m.c).powi(2)) / (2.0 * m.a * m.d)).acos();
+    for &(kind, x, [beta, gamma]) in &found.events {
+        let law = found.law;
         println!(
-            "  event {:?} at phi = {:.12} rad; law of cosines gives {:.12} (difference {:.1e}); beta = {:.6}, gamma = {:.6}",
-            ev.kind,
-            ev.x[0],
-            law,
-            (ev.x[0] - law).abs(),
-            ev.q[0],
-            ev.q[1]
+            "  event {kind:?} at phi = {x:.12} rad; law of cosines gives {law:.12} (difference {:.1e}); \
+             beta = {beta:.6}, gamma = {gamma:.6}",
+            (x - law).abs(),
         );
     }
-    let reach = m.reachable(0.0, PI, &g, 91)?;
-    let (lo, hi) = (reach.from.phi, reach.to.phi);
+    let [lo, hi] = found.reach;
     println!("  reachable input range on this assembly mode: [{lo:.12}, {hi:.12}] rad");
-
-    let traced = m.trace_curve(0.0, PI, &g, &kinloop::TraceConfig::default())?;
+    let traced = &found.traced;
     println!(
         "  arclength continuation: {} points, closed = {}, limit positions at {:?}",
         traced.points.len(),
