@@ -75,20 +75,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  {name}: {:.1e} rad, {:.1e} rad/s, {:.1e} rad/s^2", d[0], d[1], d[2]);
     }
 
-    // Cylinder 1 turns back when it is perpendicular to link 3 (s^2 = l5^2 - l3^2): located as
-    // the maximum of phi1, a root of its angular velocity.
-    let run = m.sampled(0.0, 6.0, 61, &m.guess(0.0))?;
-    let top = run.range(RollerEdger::COL.phi1)?.max;
-    println!(
-        "cylinder 1 turns back at t = {:.6} s (closed form {:.6} s), phi1 = {:.6}°",
-        top.x,
-        ((m.l5 * m.l5 - m.l3 * m.l3).sqrt() - m.l1) / m.v1,
-        top.value.to_degrees()
-    );
+    let [t, closed_t, phi1] = turn_back(&m)?;
+    println!("cylinder 1 turns back at t = {t:.6} s (closed form {closed_t:.6} s), phi1 = {:.6}°", phi1.to_degrees());
 
     let dir = draw(&states)?;
     println!("\nwrote angles_velocities_accelerations.svg to {}", dir.display());
     Ok(())
+}
+
+/// When cylinder 1 turns back: `[t, t by the closed form, phi1 there]`. It turns back when it
+/// is perpendicular to link 3 (`s^2 = l5^2 - l3^2`), located along the stroke as the maximum of
+/// `phi1`, a root of its angular velocity.
+pub fn turn_back(m: &RollerEdger) -> Result<[f64; 3], kinloop::Error> {
+    let run = m.sampled(0.0, 6.0, 61, &m.guess(0.0))?;
+    let top = run.range(RollerEdger::COL.phi1)?.max;
+    Ok([top.x, ((m.l5 * m.l5 - m.l3 * m.l3).sqrt() - m.l1) / m.v1, top.value])
 }
 
 /// The paper's figure: link angles, angular velocities and accelerations against time; returns
