@@ -24,18 +24,20 @@ use kinloop_fixtures::gear_lever::{GearLever, GearLeverState, stops};
 use std::f64::consts::TAU;
 
 /// What the paper's Fig. 3 shows for one `k`.
-struct Stop {
+pub struct Stop {
     /// Dwell duration in carrier degrees.
-    duration: f64,
+    pub duration: f64,
     /// Rocker swing during the stop, degrees.
-    swing: f64,
-    /// Largest acceleration analog eps_r / omega^2 over a turn, and where it occurs (carrier
-    /// degrees modulo the 120° stop cycle; by symmetry the smallest is its negative).
-    peak_acc: f64,
-    peak_at: f64,
+    pub swing: f64,
+    /// Largest acceleration analog eps_r / omega^2 over a turn (by symmetry the smallest is its
+    /// negative).
+    pub peak_acc: f64,
+    /// Where it occurs: carrier degrees modulo the 120° stop cycle.
+    pub peak_at: f64,
 }
 
-fn stop(k: f64) -> Result<Stop, kinloop::Error> {
+/// The stop of the drive with the pin at `k` planet radii from the planet's centre.
+pub fn stop(k: f64) -> Result<Stop, kinloop::Error> {
     let (dwells, (peak_at, peak_acc)) = stops(&GearLever { l_p: k, ..GearLever::default() })?;
     assert_eq!(dwells.len(), 3, "three stops per turn for k = {k}");
     let d = dwells[0];
