@@ -22,7 +22,7 @@ use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use std::f64::consts::TAU;
 
 /// Strokes, extremes and phase shift of a drive with piston `x_c` and displacer `x_f`.
-fn report<M, const N: usize, const NO: usize>(
+pub fn report<M, const N: usize, const NO: usize>(
     name: &str,
     turn: &Sampled<'_, M, N, NO>,
     [x_c, x_f]: [Column<M>; 2],
