@@ -294,8 +294,8 @@
 //! without it, its faster parser may read the last bit of some numbers differently. JSON has
 //! no NaN nor infinity: a state's, a parameter set's or other generated struct's (alone as
 //! inside a state), a vector's, a table's, an event's, a report's or a configuration's are
-//! written as the strings `"NaN"`, `"inf"` and `"-inf"` and read back as they were (`null`
-//! reads as NaN).
+//! written as the strings `"NaN"`, `"inf"` and `"-inf"` and read back as they were, a NaN with
+//! its sign and payload (`"-NaN"`, `"NaN(0x..)"` with its bits; `null` reads as NaN).
 //! Configurations ([`SweepConfig`], [`NewtonConfig`], the optimisers) are built from their
 //! defaults with `with_*` methods: `SweepConfig::default().with_max_step(0.5)`.
 //!

@@ -7,11 +7,12 @@
 //! was factorised, synthesis reports infinities and NaN where a candidate is degenerate (the
 //! ratio of a zero-length link). JSON has neither: serde_json writes them as `null`, which does
 //! not read back as an `f64`, and which in an `Option<f64>` is `None`. A self-describing format
-//! (`is_human_readable`) therefore gets a non-finite number as the string Rust prints for it
-//! (`inf`, `-inf`, `NaN`), so that an infinity stays an infinity and `Some(inf)` is not read as
-//! `None`; a compact binary format holds the `f64` itself. Reading takes a number, such a
-//! string, or `null` (what earlier writers wrote for any non-finite number) as NaN; where the
-//! field is an `Option`, `null` is `None`, as it always was.
+//! (`is_human_readable`) therefore gets a non-finite number as a string, so that an infinity
+//! stays an infinity and `Some(inf)` is not read as `None`: `inf`, `-inf`, and a NaN with its
+//! bits, `NaN` (`f64::NAN`), `-NaN` (its sign bit set, as `0.0 / 0.0` leaves it on x86-64) or any
+//! other as `NaN(0x..)` (its 64 bits in hex); a compact binary format holds the `f64` itself.
+//! Reading takes a number, such a string, or `null` (what earlier writers wrote for any
+//! non-finite number) as NaN; where the field is an `Option`, `null` is `None`, as it always was.
 //!
 //! Types of known shape go through [`Floats`]; values of a generic type (a `Vec2<T>`'s
 //! components, a named state's fields) through [`within`], which applies the same convention to
@@ -31,11 +32,44 @@ impl Serialize for Float {
         let v = self.0;
         if v.is_finite() || !s.is_human_readable() {
             s.serialize_f64(v)
+        } else if v.is_nan() {
+            s.serialize_str(&nan_text(v))
         } else {
-            // `inf`, `-inf` or `NaN`: what `f64::from_str` reads back.
+            // `inf` or `-inf`: what `f64::from_str` reads back.
             s.serialize_str(&v.to_string())
         }
     }
+}
+
+/// The bits of the NaN `f64::NAN` is, written `"NaN"`.
+const QUIET_NAN: u64 = 0x7ff8_0000_0000_0000;
+
+/// The sign bit of an `f64`.
+const SIGN: u64 = 1 << 63;
+
+/// The text of the NaN `v`, from which [`nan_of_text`] reads back its bits: `"NaN"` for
+/// `f64::NAN`, `"-NaN"` for it with the sign bit set (what `0.0 / 0.0` gives on x86-64 and what
+/// most arithmetic that makes a NaN there leaves), and any other NaN by its bits
+/// (`"NaN(0x7ff0000000000001)"`). Rust prints every NaN as `NaN`, which read back as
+/// `f64::NAN`: a NaN computed at run time came back from JSON with its sign bit cleared.
+fn nan_text(v: f64) -> String {
+    match v.to_bits() {
+        QUIET_NAN => "NaN".into(),
+        b if b == QUIET_NAN | SIGN => "-NaN".into(),
+        b => format!("NaN({b:#018x})"),
+    }
+}
+
+/// The NaN written by [`nan_text`] as `"NaN(0x..)"` (its 64 bits in hex), or `None` where `v`
+/// is not of that form or its bits are not a NaN's.
+fn nan_of_text(v: &str) -> Option<f64> {
+    let hex = v.strip_prefix("NaN(0x")?.strip_suffix(')')?;
+    // `from_str_radix` takes a leading `+`: sixteen hex digits exactly.
+    if hex.len() != 16 || !hex.bytes().all(|b| b.is_ascii_hexdigit()) {
+        return None;
+    }
+    let v = f64::from_bits(u64::from_str_radix(hex, 16).ok()?);
+    v.is_nan().then_some(v)
 }
 
 impl<'de> Deserialize<'de> for Float {
@@ -64,7 +98,12 @@ impl Visitor<'_> for FloatVisitor {
         Ok(Float(v as f64))
     }
     fn visit_str<E: Error>(self, v: &str) -> Result<Float, E> {
-        v.parse().map(Float).map_err(|_| E::invalid_value(serde::de::Unexpected::Str(v), &self))
+        // `f64::from_str` reads `"NaN"` and `"-NaN"` with their sign bits.
+        v.parse()
+            .ok()
+            .or_else(|| nan_of_text(v))
+            .map(Float)
+            .ok_or_else(|| E::invalid_value(serde::de::Unexpected::Str(v), &self))
     }
     fn visit_unit<E>(self) -> Result<Float, E> {
         Ok(Float(f64::NAN))

@@ -166,11 +166,13 @@ impl<const N: usize, const NI: usize, const NO: usize> KinSink<N, NI, NO> for &m
 /// `d2q[u][i][j] = d2 q_u / d x_i d x_j`.
 ///
 /// With the feature `serde` a state serializes as nested sequences and reads back only into a
-/// mechanism of the same sizes, every number as it was, bit for bit (a NaN as a NaN). JSON has no
-/// NaN nor infinity: it gets them as the strings `"NaN"`, `"inf"` and `"-inf"` (as every number
-/// of the crate), and reads a number, such a string, or `null` (what earlier versions wrote for
-/// them) as NaN, except `health.min_pivot`, infinite when no block was factorised, where `null`
-/// reads as that infinity. A compact binary format holds the `f64`s themselves.
+/// mechanism of the same sizes, every number as it was, bit for bit (a NaN with its sign and
+/// payload). JSON has no NaN nor infinity: it gets them as the strings `"inf"`, `"-inf"`, `"NaN"`
+/// (`f64::NAN`), `"-NaN"` (its sign bit set, as arithmetic leaves it on x86-64) or `"NaN(0x..)"`
+/// (any other NaN, its bits in hex), as every number of the crate, and reads a number, such a
+/// string, or `null` (what earlier versions wrote for them) as NaN, except `health.min_pivot`,
+/// infinite when no block was factorised, where `null` reads as that infinity. A compact binary
+/// format holds the `f64`s themselves.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Kin<const N: usize, const NI: usize, const NO: usize> {
     /// Input values (generalized coordinates), in declaration order.

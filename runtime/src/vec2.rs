@@ -30,8 +30,9 @@ use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 /// With the feature `serde` a vector is `{"x": .., "y": ..}` for any component type that
 /// serializes, and every `f64` within reads back as it was written, bit for bit: a
 /// self-describing format such as JSON, which has no NaN nor infinity, gets those as the strings
-/// `"NaN"`, `"inf"`, `"-inf"` (where it wrote `null`, which did not read back), and reads a
-/// number, such a string, or `null` as NaN; a compact binary format holds the `f64` itself. The
+/// `"inf"`, `"-inf"` and `"NaN"`, `"-NaN"` or `"NaN(0x..)"` (a NaN with its sign and payload)
+/// where it wrote `null`, which did not read back, and reads a number, such a string, or `null`
+/// as NaN; a compact binary format holds the `f64` itself. The
 /// components pass through an adapter of the format rather than a trait of their type: the
 /// structs `mechanism!` generates hold `Vec2<T>` for any `T` they are given, with no more known of
 /// it than that it serializes, and `Vec2<[f64; N]>` or a user's own `T` keep serializing.
