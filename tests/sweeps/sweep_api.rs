@@ -193,6 +193,33 @@ fn trace_options_are_validated_naming_the_field() {
     assert!(t.closed && !t.truncated, "{} points", t.points.len());
 }
 
+/// A trace keeps every point: a `max_points` whose points would take more than the 1 GiB a
+/// sweep's `run()` keeps at most is refused before the first step, with the numbers and the most
+/// that fit (a four-bar's point is its input, two positions and the input's rate: 32 bytes,
+/// 33,554,432 of them in 1 GiB). `max_points` allowed up to `10^8` points, 3.2 GB of a four-bar
+/// and several times that of a larger mechanism, where a failed allocation aborts the process;
+/// a curve that closes sooner never showed it. The most that fit are allowed.
+#[test]
+fn a_trace_whose_points_could_exceed_the_memory_budget_is_refused() {
+    let m = rocker();
+    let g = m.position(0.0, &m.guess(0.0)).unwrap().0;
+    let each = size_of::<kinloop::TracedPoint<2, 1>>();
+    assert_eq!(each, 32);
+    let most = kinloop::paths::collected::MAX_COLLECTED_BYTES / each;
+    for max_points in [most + 1, kinloop::analysis::MAX_SAMPLES] {
+        let e = match m.trace_curve(0.0, PI, &g, &TraceConfig::default().with_max_points(max_points)) {
+            Ok(t) => panic!("{max_points} points allowed: a curve of {} points traced", t.points.len()),
+            Err(e) => e,
+        };
+        let text = e.to_string();
+        assert!(matches!(e, Error::InvalidArgument(_)), "{text}");
+        assert!(text.contains(&format!("would keep {max_points} points")), "{text}");
+        assert!(text.contains(&format!("`TraceConfig::max_points` at most {most}")), "{text}");
+    }
+    let t = m.trace_curve(0.0, PI, &g, &TraceConfig::default().with_max_points(most)).unwrap();
+    assert!(t.closed && !t.truncated, "{} points", t.points.len());
+}
+
 #[test]
 fn a_scan_uses_each_mechanism_configuration_unless_it_gives_one() {
     use kinloop::{Kin, ScanConfig, scan};

@@ -1,7 +1,8 @@
 //! The memory budget of what keeps one state (or row) per sample: a sweep's collecting methods
 //! ([`SweepOf::run`](super::sweep::SweepOf::run) and [`SweepOf::table`](super::sweep::SweepOf::table)),
-//! [`sweep_at_of`](super::sweep_at::sweep_at_of), and a [`SampledOf`](crate::analysis::SampledOf)
-//! with the analyses built on one (a limit search's columns), where iterating a sweep keeps none.
+//! [`sweep_at_of`](super::sweep_at::sweep_at_of), a [`SampledOf`](crate::analysis::SampledOf)
+//! with the analyses built on one (a limit search's columns), and the points of
+//! [`trace_curve_of`](super::trace::trace_curve_of), where iterating a sweep keeps none.
 
 use crate::error::Error;
 

@@ -1,6 +1,7 @@
 //! Tracing a whole solution curve through its limit positions ([`trace_curve`], configured by
 //! [`TraceConfig`]), over any [`Kernel`] ([`trace_curve_of`]).
 
+use super::collected::{MAX_COLLECTED_BYTES, check_collected};
 use super::curve::{
     CurvePoint, Metric, Path, arc_step, event_at, locate_fold, loose_position, pivot_at, signed_det, singular_ratio_at,
     tangent_from_analogs,
@@ -41,7 +42,10 @@ pub struct TraceConfig {
     #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub ds: f64,
     /// Most points returned (default `100_000`; at most
-    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), the most an analysis holds).
+    /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), the most an analysis holds, and no more
+    /// than fit in [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), 1 GiB,
+    /// for the mechanism traced: about 33 million points of a four-bar, which
+    /// [`trace_curve`] checks before its first step).
     pub max_points: usize,
     /// The corrector's Newton configuration; `None` (default): the mechanism's
     /// ([`Mechanism::solver_config`]).
@@ -204,8 +208,10 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 ///
 /// A compiled mechanism's [`trace_curve_of`] (through [`Compiled`]).
 ///
-/// Errors: `InvalidArgument` for invalid options (naming the field) or `to == from`; the
-/// errors of the first solve at `from`, but for an analog beyond `f64`'s range (the
+/// Errors: `InvalidArgument` for invalid options (naming the field), a
+/// [`TraceConfig::max_points`] whose points would take more than
+/// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES) (with the numbers), or
+/// `to == from`; the errors of the first solve at `from`, but for an analog beyond `f64`'s range (the
 /// acceleration analogs by a length input in a mechanism below about `1e-154` in size), which
 /// the trace does not use; `Branch` where the continuation cannot proceed (the
 /// curve ends or jumps, or branches meet, where no step however short stays on it).
@@ -255,6 +261,9 @@ pub fn trace_curve_of<K: Kernel>(
     if let Some(e) = range_too_long(&metric, path.len, || m.location(from.as_ref(), None)) {
         return Err(e);
     }
+    // Every point is kept: refused before the first step where they could exceed the memory
+    // budget (after the range, whose refusal says more of a trace that could never end).
+    check_point_budget(m, opts.max_points)?;
     // Not at a branch point, where two curves meet: there the point solve's error stands.
     let tangent = trace_start::tangent(m, &path, &metric, (&q, sigma), analogs, CROSSING_SINGULAR)?;
     // At a limit position, or within about the square of this of one (scaled): listed there.
@@ -510,6 +519,27 @@ pub fn trace_curve_of<K: Kernel>(
         folds.filter(|(f, w)| !crossings.iter().any(|(c, cw)| beside((c, *cw), (f, *w)))).map(|(f, _)| f).collect();
     out.crossings = crossings.into_iter().map(|(c, _)| c).collect();
     Ok(out)
+}
+
+/// `Err(Error::InvalidArgument)` where `max_points` points of `m`'s trace would take more than
+/// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), with the numbers and
+/// the most points that fit. A trace keeps every point, and `max_points` may be as large as
+/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES): a four-bar's `10^8` points are 3.2 GB, a
+/// run-time model's several times that (each point's positions and inputs on the heap), and a
+/// failed allocation aborts the process where a sweep's `run()` refuses the same before its
+/// first step.
+fn check_point_budget<K: Kernel>(m: &K, max_points: usize) -> Result<(), Error> {
+    let d = m.dims();
+    // The point itself, and its positions and inputs where they are on the heap (a run-time
+    // model's, whose states then hold heap bytes too; a compiled mechanism's arrays are inline).
+    let heap = if d.kin().heap_bytes() > 0 { (d.n() + d.ni()) * size_of::<f64>() } else { 0 };
+    let bytes_each = size_of::<TracedPointOf<Q<K>, X<K>>>() + heap;
+    let most = MAX_COLLECTED_BYTES / bytes_each.max(1);
+    let instead = format!(
+        "give `TraceConfig::max_points` at most {most} (this mechanism's points that fit), and trace a long curve \
+         in parts, each from the last point of the one before"
+    );
+    check_collected("`trace_curve`", "points (up to `TraceConfig::max_points`)", max_points, bytes_each, &instead)
 }
 
 /// The point just past a branch point ahead of the curve point `p`, within the arclength
