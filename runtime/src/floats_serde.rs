@@ -60,6 +60,13 @@ fn nan_text(v: f64) -> String {
     }
 }
 
+/// Whether `v` names an infinity as `f64::from_str` reads one (`inf`, `infinity`, any case, with
+/// a sign or none), rather than a decimal too large for `f64`.
+fn is_infinity_word(v: &str) -> bool {
+    let word = v.strip_prefix(['+', '-']).unwrap_or(v);
+    word.eq_ignore_ascii_case("inf") || word.eq_ignore_ascii_case("infinity")
+}
+
 /// The NaN written by [`nan_text`] as `"NaN(0x..)"` (its 64 bits in hex), or `None` where `v`
 /// is not of that form or its bits are not a NaN's.
 fn nan_of_text(v: &str) -> Option<f64> {
@@ -98,9 +105,12 @@ impl Visitor<'_> for FloatVisitor {
         Ok(Float(v as f64))
     }
     fn visit_str<E: Error>(self, v: &str) -> Result<Float, E> {
-        // `f64::from_str` reads `"NaN"` and `"-NaN"` with their sign bits.
-        v.parse()
+        // `f64::from_str` reads `"NaN"` and `"-NaN"` with their sign bits. A decimal beyond
+        // `f64`'s range (`"1e400"`) it reads as an infinity, which no writer meant: refused, as
+        // the format refuses such a number written as one ("number out of range").
+        v.parse::<f64>()
             .ok()
+            .filter(|f| !f.is_infinite() || is_infinity_word(v))
             .or_else(|| nan_of_text(v))
             .map(Float)
             .ok_or_else(|| E::invalid_value(serde::de::Unexpected::Str(v), &self))

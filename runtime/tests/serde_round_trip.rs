@@ -565,3 +565,28 @@ fn a_nan_reads_back_from_json_with_its_sign_and_payload() {
         assert!(err.contains(r#"expected a number, "inf", "-inf", "NaN", or null for NaN"#), "{json}: {err}");
     }
 }
+
+/// A decimal too large for `f64` written as a string (`"1e400"`, by hand: kinloop writes only
+/// the non-finite numbers as strings) is refused, saying what a number may be written as, as
+/// serde_json refuses it written as a number ("number out of range"): it was read as an
+/// infinity, a value nobody wrote. The infinities by name, in any case and with either sign,
+/// and a finite decimal as a string still read as they are.
+#[test]
+fn a_decimal_beyond_the_range_of_f64_in_a_string_is_refused() {
+    let read = |x: &str| serde_json::from_str::<Vec2>(&format!(r#"{{"x":{x},"y":1.0}}"#)).map(|v| v.x);
+    for huge in [r#""1e400""#, r#""-1e400""#, r#""1.8e308""#, r#""+2e308""#] {
+        let err = read(huge).expect_err(huge).to_string();
+        assert!(err.contains(r#"expected a number, "inf", "-inf", "NaN", or null for NaN"#), "{huge}: {err}");
+    }
+    assert!(read("1e400").unwrap_err().to_string().contains("number out of range"));
+    for (word, value) in [
+        (r#""inf""#, f64::INFINITY),
+        (r#""-inf""#, f64::NEG_INFINITY),
+        (r#""+Infinity""#, f64::INFINITY),
+        (r#""-INF""#, f64::NEG_INFINITY),
+        (r#""1.7976931348623157e308""#, f64::MAX),
+        (r#""0.5""#, 0.5),
+    ] {
+        assert_eq!(read(word).unwrap(), value, "{word}");
+    }
+}
