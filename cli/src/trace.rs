@@ -65,6 +65,16 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         eprintln!("error: {name}: {e}");
         Failed(exit::SOLVE_FAILED)
     };
+    // Every point is kept: more than fit in the memory budget are refused in the option's terms
+    // (the runtime's refusal names its own field).
+    let most = model.max_trace_points().map_err(|e| failed(&e))?;
+    if req.max_points > most {
+        return Err(exit::usage(format!(
+            "--max-points {}: more points of {name} than fit in the 1 GiB a trace keeps at most; give at most {most}, \
+             and trace a long curve in parts, each from the last point of the one before",
+            req.max_points
+        )));
+    }
     let opts = TraceConfig::default().with_ds(req.ds).with_max_points(req.max_points);
     let mut guess = vec![0.0; model.unknowns().len()];
     model.guess(&from, &mut guess).map_err(|e| failed(&e))?;

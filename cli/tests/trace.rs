@@ -255,6 +255,42 @@ fn the_most_points_stop_the_trace_and_it_says_so() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("stopped at --max-points 7"));
 }
 
+/// A trace keeps every point, and the runtime refuses a `--max-points` whose points would take
+/// more than the 1 GiB a collector keeps at most; the command says so in its own option's terms,
+/// with the most that fit for this model, not in the library's field's. A run-time model's point
+/// holds its positions and inputs on the heap: of a chain of five four-bars (ten unknowns) fewer
+/// than the option's own bound of 10^7 fit. The most that fit are traced.
+#[test]
+fn more_points_than_fit_in_memory_are_refused_naming_the_option() {
+    let mut text = String::from("pub struct Chain {\n    params a = 1, b = 3, c = 2.5, d = 3.2;\n    input phi;\n");
+    text += "    unknowns u0 = 0.6, v0 = 1.9, u1 = 0.6, v1 = 1.9, u2 = 0.6, v2 = 1.9, u3 = 0.6, v3 = 1.9, u4 = 0.6, v4 = 1.9;\n";
+    for (i, driver) in ["phi", "v0", "v1", "v2", "v3"].iter().enumerate() {
+        text += &format!("    loop l{i}: a @ {driver} + b @ u{i} == (d, 0) + c @ v{i};\n");
+    }
+    text += "}\n";
+    let path = std::env::temp_dir().join(format!("kinloop-trace-chain-{}.kl", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    let chain = path.display().to_string();
+    let run = |n: &str| kinloop(&["trace", chain.as_str(), "--from", "0", "--to", "1", "--max-points", n]);
+    let out = run("10000000");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--max-points 10000000: more points of Chain than fit in the 1 GiB"), "{stderr}");
+    assert!(!stderr.contains("TraceConfig"), "{stderr}");
+    let most: usize = stderr
+        .split("give at most ")
+        .nth(1)
+        .and_then(|rest| rest.split(',').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("the most that fit: {stderr}"));
+    assert!((1_000_000..10_000_000).contains(&most), "{most}");
+    let over = run(&(most + 1).to_string());
+    assert_eq!(over.status.code(), Some(2), "{}", String::from_utf8_lossy(&over.stderr));
+    let at = run(&most.to_string());
+    std::fs::remove_file(&path).ok();
+    assert!(at.status.success(), "{}", String::from_utf8_lossy(&at.stderr));
+}
+
 /// The help of `--max-points` says what the most points cost: every point is kept until the
 /// trace ends, as `extremes` says of its samples; it gave the bound alone, which takes about a
 /// gigabyte.

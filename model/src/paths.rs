@@ -17,7 +17,7 @@ use kinloop_runtime::paths::modes::assembly_modes_of;
 use kinloop_runtime::paths::reach::reachable_of;
 use kinloop_runtime::paths::scan::fold_sweep_of;
 use kinloop_runtime::paths::sweep_at::sweep_at_of;
-use kinloop_runtime::paths::trace::{TracedOf, trace_curve_of};
+use kinloop_runtime::paths::trace::{TracedOf, max_trace_points, trace_curve_of};
 use kinloop_runtime::{Error, Kernel, Reach, SweepConfig, SweepResult, TraceConfig};
 
 /// A vector of the model's sizes from a slice (checked by the algorithm it is given to).
@@ -57,6 +57,13 @@ impl Model {
     ) -> Result<ModelTraced, Error> {
         let k = self.kernel(self.sweep_config)?;
         trace_curve_of(&k, heap(from), heap(to), heap(guess), opts)
+    }
+
+    /// The most points a trace of this model keeps within the memory budget
+    /// ([`max_trace_points`]): the largest [`TraceConfig::max_points`]
+    /// [`Model::trace_curve`] accepts for it.
+    pub fn max_trace_points(&mut self) -> Result<usize, Error> {
+        Ok(max_trace_points(&self.kernel(self.sweep_config)?))
     }
 
     /// How far the input can move from `at` towards `at + delta` and `at - delta` on the

@@ -521,25 +521,39 @@ pub fn trace_curve_of<K: Kernel>(
     Ok(out)
 }
 
+/// The most points of `m`'s trace that fit in
+/// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), the memory a collector
+/// keeps at most: the largest [`TraceConfig::max_points`] [`trace_curve_of`] accepts for `m`
+/// (about 33 million points of a four-bar), for a caller that states the limit in its own terms
+/// (a command line's option) before it traces.
+pub fn max_trace_points<K: Kernel>(m: &K) -> usize {
+    MAX_COLLECTED_BYTES / trace_point_bytes(m).max(1)
+}
+
+/// The bytes one point of `m`'s trace keeps: the point itself, and its positions and inputs
+/// where they are on the heap (a run-time model's, whose states then hold heap bytes too; a
+/// compiled mechanism's arrays are inline).
+fn trace_point_bytes<K: Kernel>(m: &K) -> usize {
+    let d = m.dims();
+    let heap = if d.kin().heap_bytes() > 0 { (d.n() + d.ni()) * size_of::<f64>() } else { 0 };
+    size_of::<TracedPointOf<Q<K>, X<K>>>() + heap
+}
+
 /// `Err(Error::InvalidArgument)` where `max_points` points of `m`'s trace would take more than
 /// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), with the numbers and
-/// the most points that fit. A trace keeps every point, and `max_points` may be as large as
-/// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES): a four-bar's `10^8` points are 3.2 GB, a
-/// run-time model's several times that (each point's positions and inputs on the heap), and a
-/// failed allocation aborts the process where a sweep's `run()` refuses the same before its
-/// first step.
+/// the most points that fit ([`max_trace_points`]). A trace keeps every point, and `max_points`
+/// may be as large as [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES): a four-bar's `10^8` points
+/// are 3.2 GB, a run-time model's several times that (each point's positions and inputs on the
+/// heap), and a failed allocation aborts the process where a sweep's `run()` refuses the same
+/// before its first step.
 fn check_point_budget<K: Kernel>(m: &K, max_points: usize) -> Result<(), Error> {
-    let d = m.dims();
-    // The point itself, and its positions and inputs where they are on the heap (a run-time
-    // model's, whose states then hold heap bytes too; a compiled mechanism's arrays are inline).
-    let heap = if d.kin().heap_bytes() > 0 { (d.n() + d.ni()) * size_of::<f64>() } else { 0 };
-    let bytes_each = size_of::<TracedPointOf<Q<K>, X<K>>>() + heap;
-    let most = MAX_COLLECTED_BYTES / bytes_each.max(1);
     let instead = format!(
-        "give `TraceConfig::max_points` at most {most} (this mechanism's points that fit), and trace a long curve \
-         in parts, each from the last point of the one before"
+        "give `TraceConfig::max_points` at most {} (this mechanism's points that fit), and trace a long curve in \
+         parts, each from the last point of the one before",
+        max_trace_points(m)
     );
-    check_collected("`trace_curve`", "points (up to `TraceConfig::max_points`)", max_points, bytes_each, &instead)
+    let (what, bytes_each) = ("points (up to `TraceConfig::max_points`)", trace_point_bytes(m));
+    check_collected("`trace_curve`", what, max_points, bytes_each, &instead)
 }
 
 /// The point just past a branch point ahead of the curve point `p`, within the arclength
