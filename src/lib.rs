@@ -414,8 +414,21 @@ pub mod language;
 /// assert!(((up.q.beta - down.q.beta) / (2.0 * h) - s.dq.beta).abs() < 1e-8);
 /// # Ok::<(), kinloop::Error>(())
 /// ```
-#[doc(inline)]
-pub use kinloop_macros::mechanism;
+///
+/// The expansion names kinloop as this macro was reached: a crate that depends on kinloop under
+/// another name (`kl = { package = "kinloop", ... }` in `Cargo.toml`), or through a crate that
+/// re-exports it, calls `kl::mechanism!` and needs nothing else.
+// A `macro_rules!` wrapper, not the procedural macro re-exported: `$crate` is the one name of
+// kinloop that holds in the user's crate whatever it calls kinloop, and only a `macro_rules!`
+// macro has it. The procedural macro receives it in the marker `#![crate = $crate]` and roots
+// every path of the expansion there. The declaration's tokens pass through unchanged, with
+// their spans: errors still point into the user's declaration.
+#[macro_export]
+macro_rules! mechanism {
+    ($($declaration:tt)*) => {
+        $crate::__gen::mechanism! { #![crate = $crate] $($declaration)* }
+    };
+}
 // The runtime's public items, listed rather than glob-imported: a glob would also inline the
 // whole of nalgebra into these pages (rustdoc documents a module re-exported through a glob).
 /// nalgebra, the linear algebra of the runtime, under its own path so that users share its
@@ -437,6 +450,7 @@ pub use kinloop_runtime::paths::scan::*;
 /// What code expanded by [`mechanism!`] names (and nothing else); not for use by hand.
 #[doc(hidden)]
 pub mod __gen {
+    pub use kinloop_macros::mechanism;
     pub use kinloop_runtime::generated::*;
 
     // The `Serialize` and `Deserialize` derives every generated struct names: with the feature

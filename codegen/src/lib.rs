@@ -117,7 +117,18 @@ pub fn drawing(planned: &Planned) -> String {
 /// invocations, all of them together; once the mechanism's name is known they come with the
 /// mechanism's named types, declared from the syntax alone, so code that uses those types adds
 /// no secondary errors.
+///
+/// The facade's wrapper begins the invocation with the marker `#![crate = $crate]`: the
+/// expansion then reaches the runtime through that path, which names kinloop however the user's
+/// crate depends on it (renamed, or through a crate that re-exports it). Without the marker it
+/// names `::kinloop`.
 pub fn expand(input: TokenStream) -> TokenStream {
+    let (root, declaration) = emit::runtime_path::split_root(input);
+    emit::runtime_path::with_root(root, || expand_declaration(declaration))
+}
+
+/// [`expand`] once the facade's path is set.
+fn expand_declaration(input: TokenStream) -> TokenStream {
     let (def, syntax_errors) = declaration::parse_recover(input);
     let Some(def) = def else {
         return syntax_errors.map(|e| e.to_compile_error()).unwrap_or_default();

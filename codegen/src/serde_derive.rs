@@ -16,18 +16,22 @@
 //! converted value is written (read) through the same adapter.
 //!
 //! The derives take what `mechanism!` generates and nothing else: a struct with named fields,
-//! type parameters only, the container arguments `crate`, `from`, `into` and the field argument
+//! type parameters only, the container arguments `runtime`, `from`, `into` and the field argument
 //! `skip`. Anything else is a compile error naming it, never a panic.
+//!
+//! `runtime = path` is where the generated code finds the runtime (`kinloop::__gen` as the
+//! invocation of `mechanism!` named it: `$crate::__gen` through the facade's wrapper, so a
+//! renamed dependency works), and the derives with it serde (`path::serde`) and the adapter:
+//! a path in tokens, not in serde's string, which cannot hold `$crate`. What takes strings names
+//! the two by aliases that the emitted block declares: the types of `from` and `into` the runtime
+//! as `__kinloop_gen` (see `RUNTIME_ALIAS`), serde's own derive on the twin serde as
+//! `__kinloop_serde`.
 
+use crate::emit::runtime_path::RUNTIME_ALIAS;
 use proc_macro2::{Span, TokenStream};
 use quote::quote;
 use syn::ext::IdentExt;
 use syn::{Attribute, Data, DeriveInput, Fields, GenericParam, Ident, LitStr, Type};
-
-/// Where the emitted impls find the adapter.
-fn adapter() -> TokenStream {
-    quote!(::kinloop::__gen)
-}
 
 /// `#[derive(FloatsSerialize)]`: `Serialize` with every number through `FloatsSer`.
 pub fn derive_serialize(input: TokenStream) -> TokenStream {
@@ -52,12 +56,17 @@ fn derive(input: TokenStream, dir: Direction) -> TokenStream {
     }
 }
 
+/// The alias of serde in the block the derives emit, for serde's own derive on the twin, which
+/// takes paths as strings.
+const SERDE_ALIAS: &str = "__kinloop_serde";
+
 /// The container's `serde` arguments the derives honour.
 struct Container {
-    /// Where serde is (`crate = ".."`; serde's own default `serde` otherwise).
+    /// Where the runtime is (`runtime = path`; `::kinloop::__gen` otherwise): the adapter's
+    /// module, and serde's parent.
+    runtime: TokenStream,
+    /// serde, as the impls name it: `runtime::serde`.
     krate: TokenStream,
-    /// The text of `krate`, as serde's `crate` argument takes it.
-    krate_text: String,
     from: Option<Type>,
     into: Option<Type>,
 }
@@ -163,7 +172,8 @@ impl<'a> Shape<'a> {
     /// The impl: the twin's remote functions, handed the adapter.
     fn through_twin(&self, dir: Direction) -> TokenStream {
         let Shape { input, container, .. } = self;
-        let (krate, krate_text) = (&container.krate, &container.krate_text);
+        let (krate, runtime) = (&container.krate, &container.runtime);
+        let alias = Ident::new(SERDE_ALIAS, Span::call_site());
         let twin = Ident::new("__KinloopSerdeTwin", Span::call_site());
         let (name, generics) = (&input.ident, &input.generics);
         let where_clause = &generics.where_clause;
@@ -171,17 +181,22 @@ impl<'a> Shape<'a> {
         let rename = name.unraw().to_string();
         let trait_path = self.trait_path(dir);
         let bounded = self.bounded();
-        let bound_text = bounded.iter().map(|p| format!("{p}: {}", quote!(#trait_path))).collect::<Vec<_>>().join(", ");
+        // The twin's bounds are strings to serde: they name serde by the alias.
+        let twin_trait = match dir {
+            Direction::Serialize => quote!(#alias::Serialize),
+            Direction::Deserialize => quote!(#alias::Deserialize<'de>),
+        };
+        let bound_text = bounded.iter().map(|p| format!("{p}: {}", quote!(#twin_trait))).collect::<Vec<_>>().join(", ");
         let (derive, bound_arg) = match dir {
-            Direction::Serialize => (quote!(#krate::Serialize), quote!(serialize = #bound_text)),
-            Direction::Deserialize => (quote!(#krate::Deserialize), quote!(deserialize = #bound_text)),
+            Direction::Serialize => (quote!(#alias::Serialize), quote!(serialize = #bound_text)),
+            Direction::Deserialize => (quote!(#alias::Deserialize), quote!(deserialize = #bound_text)),
         };
         let fields = self.fields.iter().map(|f| {
             let (n, ty) = (&f.name, &f.ty);
             let skip = f.skip.then(|| quote!(#[serde(skip)]));
             quote!(#skip #n: #ty)
         });
-        let (params, self_ty, preds, a) = (self.impl_params(dir), self.self_ty(), self.own_predicates(), adapter());
+        let (params, self_ty, preds, a) = (self.impl_params(dir), self.self_ty(), self.own_predicates(), runtime);
         let method = match dir {
             Direction::Serialize => quote! {
                 fn serialize<__S: #krate::Serializer>(&self, __serializer: __S)
@@ -197,8 +212,9 @@ impl<'a> Shape<'a> {
             },
         };
         quote! {
+            use #krate as #alias;
             #[derive(#derive)]
-            #[serde(crate = #krate_text, remote = #remote, rename = #rename, bound(#bound_arg))]
+            #[serde(crate = #SERDE_ALIAS, remote = #remote, rename = #rename, bound(#bound_arg))]
             #[allow(dead_code, non_snake_case, non_camel_case_types)]
             struct #twin #generics #where_clause { #(#fields),* }
             #[automatically_derived]
@@ -210,10 +226,11 @@ impl<'a> Shape<'a> {
 
     /// `Serialize` through `into`: the converted value, written through the adapter.
     fn serialize_into(&self, into: &Type) -> TokenStream {
-        let krate = &self.container.krate;
-        let (params, self_ty, preds, a) =
-            (self.impl_params(Direction::Serialize), self.self_ty(), self.own_predicates(), adapter());
+        let (krate, a) = (&self.container.krate, &self.container.runtime);
+        let (params, self_ty, preds) = (self.impl_params(Direction::Serialize), self.self_ty(), self.own_predicates());
+        let alias = Ident::new(RUNTIME_ALIAS, Span::call_site());
         quote! {
+            use #a as #alias;
             #[automatically_derived]
             impl #params #krate::Serialize for #self_ty
             where #preds Self: ::core::clone::Clone + ::core::convert::Into<#into>, #into: #krate::Serialize {
@@ -228,10 +245,12 @@ impl<'a> Shape<'a> {
 
     /// `Deserialize` through `from`: the value read through the adapter, converted.
     fn deserialize_from(&self, from: &Type) -> TokenStream {
-        let krate = &self.container.krate;
-        let (params, self_ty, preds, a) =
-            (self.impl_params(Direction::Deserialize), self.self_ty(), self.own_predicates(), adapter());
+        let (krate, a) = (&self.container.krate, &self.container.runtime);
+        let (params, self_ty, preds) =
+            (self.impl_params(Direction::Deserialize), self.self_ty(), self.own_predicates());
+        let alias = Ident::new(RUNTIME_ALIAS, Span::call_site());
         quote! {
+            use #a as #alias;
             #[automatically_derived]
             impl #params #krate::Deserialize<'de> for #self_ty
             where #preds Self: ::core::convert::From<#from>, #from: #krate::Deserialize<'de> {
@@ -254,28 +273,28 @@ fn mentions(ty: TokenStream, p: &Ident) -> bool {
     })
 }
 
-/// The container's `serde` arguments: `crate`, `from`, `into`; any other is an error.
+/// The container's `serde` arguments: `runtime = path` in tokens, `from` and `into` types in
+/// strings (naming the runtime `__kinloop_gen`); any other is an error.
 fn container(attrs: &[Attribute]) -> syn::Result<Container> {
-    let mut c = Container { krate: quote!(::serde), krate_text: "::serde".into(), from: None, into: None };
+    let mut runtime = quote!(::kinloop::__gen);
+    let (mut from, mut into) = (None, None);
     for attr in attrs.iter().filter(|a| a.path().is_ident("serde")) {
         attr.parse_nested_meta(|meta| {
-            let text = || -> syn::Result<LitStr> { meta.value()?.parse() };
-            if meta.path.is_ident("crate") {
-                // `LitStr::parse`: a string that is no path or type is an error at the string.
-                let lit = text()?;
-                c.krate = lit.parse::<syn::Path>().map(|p| quote!(#p))?;
-                c.krate_text = lit.value();
+            if meta.path.is_ident("runtime") {
+                let path: syn::Path = meta.value()?.parse()?;
+                runtime = quote!(#path);
             } else if meta.path.is_ident("from") {
-                c.from = Some(text()?.parse()?);
+                // `LitStr::parse`: a string that is no type is an error at the string.
+                from = Some(meta.value()?.parse::<LitStr>()?.parse()?);
             } else if meta.path.is_ident("into") {
-                c.into = Some(text()?.parse()?);
+                into = Some(meta.value()?.parse::<LitStr>()?.parse()?);
             } else {
-                return Err(meta.error("kinloop's serde derives take `crate`, `from` and `into` on the struct"));
+                return Err(meta.error("kinloop's serde derives take `runtime`, `from` and `into` on the struct"));
             }
             Ok(())
         })?;
     }
-    Ok(c)
+    Ok(Container { krate: quote!(#runtime::serde), runtime, from, into })
 }
 
 /// A field, with its `serde` argument `skip`; any other is an error.
@@ -353,11 +372,11 @@ mod tests {
                         x: f64,
                     }
                 ),
-                "`crate`, `from` and `into`",
+                "`runtime`, `from` and `into`",
             ),
             (
                 quote!(
-                    #[serde(crate = "not a path")]
+                    #[serde(runtime = "not a path")]
                     struct P {
                         x: f64,
                     }
@@ -396,13 +415,13 @@ mod tests {
     /// plain, and converted through `from`/`into`; the values go through the adapter.
     #[test]
     fn the_shapes_mechanism_generates_expand_through_the_adapter() {
-        let krate = quote!(#[serde(crate = "::kinloop::__gen::serde")]);
+        let krate = quote!(#[serde(runtime = ::kinloop::__gen)]);
         let inputs = [
             quote!(#krate struct O<T = f64> { #[doc(hidden)] #[serde(skip)] pub __marker: ::core::marker::PhantomData<T>, }),
             quote!(#krate #[allow(non_snake_case)] struct P { /// doc
                 pub r#a: f64, pub B: f64 }),
             quote!(
-                #[serde(crate = "::kinloop::__gen::serde", from = "X<A>", into = "X<A>")]
+                #[serde(runtime = ::kinloop::__gen, from = "X<A>", into = "X<A>")]
                 struct S {
                     pub q: f64,
                 }
@@ -435,6 +454,46 @@ mod tests {
             }
         );
         let text = derive_serialize(point).to_string();
-        assert!(text.contains("bound (serialize = \"T: :: serde :: Serialize\")"), "{text}");
+        assert!(text.contains("bound (serialize = \"T: __kinloop_serde :: Serialize\")"), "{text}");
+    }
+
+    /// Every path the impls name starts at `runtime`: under another name than `kinloop` (a
+    /// renamed dependency, reached through `$crate`), nothing of the output names `::kinloop`,
+    /// and serde's derive on the twin gets serde by the alias the block declares.
+    #[test]
+    fn every_path_starts_at_the_runtime_given() {
+        let inputs = [
+            quote!(
+                #[serde(runtime = ::kl::__gen)]
+                struct O<T = f64> {
+                    #[serde(skip)]
+                    pub m: ::core::marker::PhantomData<T>,
+                }
+            ),
+            quote!(
+                #[serde(runtime = ::kl::__gen, from = "__kinloop_gen::X<A>", into = "__kinloop_gen::X<A>")]
+                struct S {
+                    pub q: f64,
+                }
+            ),
+        ];
+        for input in &inputs {
+            for out in [derive_serialize(input.clone()), derive_deserialize(input.clone())] {
+                let text = out.to_string();
+                assert!(error_of(&out).is_none(), "{text}");
+                assert!(!text.contains(":: kinloop") && !text.contains("\"::kinloop"), "{text}");
+                assert!(text.contains(":: kl :: __gen :: Floats"), "{text}");
+                assert!(text.contains(":: kl :: __gen :: serde ::"), "{text}");
+            }
+        }
+        let twin = derive_serialize(inputs[0].clone()).to_string();
+        assert!(twin.contains("use :: kl :: __gen :: serde as __kinloop_serde"), "{twin}");
+        assert!(twin.contains("crate = \"__kinloop_serde\""), "{twin}");
+        // `from` and `into` name the runtime by the alias the impls' block declares.
+        for out in [derive_serialize(inputs[1].clone()), derive_deserialize(inputs[1].clone())] {
+            let text = out.to_string();
+            assert!(text.contains("use :: kl :: __gen as __kinloop_gen"), "{text}");
+            assert!(text.contains("__kinloop_gen :: X < A >"), "{text}");
+        }
     }
 }

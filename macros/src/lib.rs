@@ -8,6 +8,10 @@ use proc_macro::TokenStream;
 
 /// Declares a mechanism by its closed vector loops: the grammar, an example and what is
 /// generated are on `kinloop::mechanism`, the complete reference in `kinloop::language`.
+///
+/// It is called through `kinloop::mechanism!`, a `macro_rules!` wrapper that begins the input
+/// with `#![crate = $crate]`: the expansion reaches kinloop by that path, which holds however
+/// the user's crate names kinloop. Without the marker it names `::kinloop`.
 #[proc_macro]
 pub fn mechanism(input: TokenStream) -> TokenStream {
     kinloop_codegen::expand(input.into()).into()

@@ -19,7 +19,8 @@
 //! What they all share has a module of its own: the generated types' names ([`type_names`]),
 //! the sizes ([`dims`]), index literals ([`literals`]), the lints the kernels allow ([`lints`])
 //! and the path to the runtime ([`runtime_path`]). Generated code reaches the runtime through
-//! `::kinloop::__gen` only.
+//! `__gen` of the facade only, by the path the invocation gave (`$crate` through the facade's
+//! wrapper, so a renamed dependency works) or `::kinloop`.
 
 pub mod api;
 pub mod closed_form;

@@ -6,7 +6,7 @@
 //! the same items from the syntax ([`Surface`] is built from either).
 
 use super::literals::lit;
-use super::runtime_path::runtime;
+use super::runtime_path::{RUNTIME_ALIAS, runtime};
 use super::type_names::Types;
 use crate::semantics::model::Model;
 use proc_macro2::{Ident, Span, TokenStream};
@@ -297,7 +297,9 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
     let motion_struct = motion_struct(s, t);
     // A state serializes by name: its named fields without the flat copy of the same values,
     // which deserialization rebuilds from them (the runtime's `StateByName`).
-    // Serde reads these types where the struct is declared: `f64` by its path, as in the code.
+    // The derives read these types where the struct is declared: `f64` by its path, as in the
+    // code, and the runtime by the alias they declare for it (its path may be `$crate`, which a
+    // string cannot hold).
     let f64 = "::core::primitive::f64";
     let (vs, as_) = if ni == 1 {
         (f64.to_string(), f64.to_string())
@@ -305,7 +307,7 @@ fn state_struct(s: &Surface, t: &Types) -> TokenStream {
         (format!("{inputs}<{f64}>"), format!("{inputs}<{inputs}<{f64}>>"))
     };
     let by_name = format!(
-        "::kinloop::__gen::StateByName<{inputs}, {unknowns}, {unknowns}<{vs}>, {unknowns}<{as_}>, {outputs}, \
+        "{RUNTIME_ALIAS}::StateByName<{inputs}, {unknowns}, {unknowns}<{vs}>, {unknowns}<{as_}>, {outputs}, \
          {outputs}<{vs}>, {outputs}<{as_}>>"
     );
     let derive = derives(std_derives(false), quote!(, from = #by_name, into = #by_name));
@@ -403,13 +405,14 @@ pub fn std_derives(with_default: bool) -> TokenStream {
 /// The derive attributes of a generated struct: the standard traits `std`, and `Serialize` and
 /// `Deserialize` from the facade's `__gen`, serde's with kinloop's feature `serde` and otherwise
 /// derives that implement nothing (the user's crate cannot test kinloop's features, so the
-/// expansion is the same either way); then the serde container attribute, naming serde through
-/// kinloop, with the further arguments `extra` (`, from = ..`).
+/// expansion is the same either way); then the container attribute of kinloop's derives, naming
+/// the runtime as this expansion does (see `serde_derive`), with the further arguments `extra`
+/// (`, from = ..`).
 fn derives(std: TokenStream, extra: TokenStream) -> TokenStream {
     let rt = runtime();
     quote! {
         #[derive(#std)]
         #[derive(#rt::Serialize, #rt::Deserialize)]
-        #[serde(crate = "::kinloop::__gen::serde" #extra)]
+        #[serde(runtime = #rt #extra)]
     }
 }
