@@ -262,6 +262,10 @@ fn every_pair_of_burmester_dyads_meets_the_five_poses() {
             let c = &report.candidates[0];
             let size = found.size.max(found.dyads[i].radius()).max(found.dyads[j].radius());
             assert!(c.max_error <= 1e-13 * size, "pair {i}, {j}: {:e}", c.max_error);
+            // Exact to the rounding of the 66-long crank too: converged, not stopped on the
+            // step (the three pairs it drives were, their residuals' rounding above `tol` of
+            // the poses' size).
+            assert_eq!(c.local.stop, OptimizerStop::Converged, "pair {i}, {j}: {:?}", c.local);
             if c.is_valid() {
                 valid.push((i, j));
             }

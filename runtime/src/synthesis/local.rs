@@ -4,9 +4,19 @@
 
 use super::problem::ProblemOf;
 use super::residuals::Eval;
+use super::resolve::Resolved;
 use crate::analysis::optimize::OptimizerStop;
 use crate::error::Error;
 use crate::mechanism::kernel::{Q, SensKernel};
+
+/// The residuals' rounding, in units in the last place of the largest magnitude they are
+/// computed from (`ProblemOf::resolution`): a local solve whose residuals' root mean square is
+/// within it is converged whatever its tolerance. Measured on exact fits whose rounding
+/// passes the tolerance (Burmester four-bars with a crank 31 times the poses' size, a four-bar
+/// 1e4 and 1e6 from the origin): at most 0.52 where they stopped on the step, 1.5 where they
+/// converged, so 4 keeps a margin for other platforms' sines and cosines and stays within a
+/// few roundings (the default `tol`, `1e-14`, is 45 of the targets' size).
+const ROUNDING: f64 = 4.0;
 
 /// Settings of the local solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,7 +33,11 @@ pub struct LocalConfig {
     /// meets its targets exactly, with as many targets as any: an exact fit's rounding is about
     /// `3e-16` of the size per target at 5 targets as at 5000 (measured), where the norm of
     /// its residuals grows with the square root of their number and passed `1e-14` of the size
-    /// at about 2000 targets.
+    /// at about 2000 targets. Also converged where that root mean square is within a few
+    /// roundings of the largest magnitude the residuals are computed from (a target's distance
+    /// from the origin, a length of the design), which no step can lower: an exact fit 1e4
+    /// from the origin, or with a crank 31 times longer than the targets' spread, is rounding
+    /// above `tol` of the spread, and was reported stopped on the step.
     #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
     pub tol: f64,
     /// Stopped on the step ([`OptimizerStop::StepTolerance`]) when a damped step changes no
@@ -168,10 +182,21 @@ impl<K: SensKernel> ProblemOf<K> {
         // their size. Their norm was compared: each target's rounding adds to it in quadrature,
         // so an exact fit of 2000 targets ended at about 1.6e-14 of the size and never met the
         // default 1e-14, though its rounding per target was that of 5 targets (about 3e-16).
+        //
+        // Or within the residuals' rounding ([`ROUNDING`] units in the last place of the largest
+        // magnitude they are computed from: see `resolution`), which no step can lower: targets
+        // 1e4 from the origin, or a crank 30 times longer than their spread, compute every
+        // residual from values whose rounding alone passes `tol` of the spread, and exact fits
+        // there ended "stopped on the step tolerance".
         let root_targets = (self.targets() as f64).sqrt();
-        let met = |f: f64| f / root_targets <= cfg.tol * self.scale;
+        let row_weight: Vec<f64> =
+            self.channels.iter().flat_map(|&(c, w)| std::iter::repeat_n(w, channel_width(c))).collect();
+        let met = |f: f64, e: &Eval<Q<K>>, z: &[f64]| {
+            let rounding = ROUNDING * f64::EPSILON * self.resolution(e, z, &row_weight);
+            f / root_targets <= (cfg.tol * self.scale).max(rounding)
+        };
         let stop = loop {
-            if met(f) {
+            if met(f, &e, &z) {
                 break OptimizerStop::Converged;
             }
             if evaluations >= cfg.max_evaluations {
@@ -302,7 +327,7 @@ impl<K: SensKernel> ProblemOf<K> {
                 // The design moves no further: converged only where the residual met its
                 // tolerance (the small step taken may have brought it there), a stop on the
                 // step otherwise; the two were both reported `Converged`.
-                Step::Accepted { small: true } | Step::Stationary if met(f) => {
+                Step::Accepted { small: true } | Step::Stationary if met(f, &e, &z) => {
                     break OptimizerStop::Converged;
                 }
                 Step::Accepted { small: true } | Step::Stationary => break OptimizerStop::StepTolerance,
@@ -312,6 +337,39 @@ impl<K: SensKernel> ProblemOf<K> {
         };
         let report = LocalReport { evaluations, iterations, stop, residual: f };
         Ok((z, e, report))
+    }
+}
+
+impl<K: SensKernel> ProblemOf<K> {
+    /// The largest magnitude a residual of `e` (at the unknowns `z`) is computed from, in the
+    /// residuals' weighted units: its target's, and each unknown's share `|dr/dz_i z_i|`, what
+    /// the residual changes by for a relative change of that unknown (a pivot 1e4 from the
+    /// origin moves the point by 1e4 times its rounding, a crank 66 long by 66 times). No
+    /// residual is resolved more finely than the rounding of these, so a fit within a few
+    /// roundings of them is exact to rounding. The largest share, not their sum, so that
+    /// shares near the largest `f64` do not overflow (a few shares are within the margin of
+    /// [`ROUNDING`]); one not finite is left out.
+    pub(crate) fn resolution(&self, e: &Eval<Q<K>>, z: &[f64], row_weight: &[f64]) -> f64 {
+        let (nv, nt) = (self.vars.len(), self.free_inputs());
+        let ng = z.len() - nt;
+        let at = |i: usize| if i < nv { i } else { i + nt };
+        let finite = |v: f64| if v.is_finite() { v } else { 0.0 };
+        (0..e.r.len())
+            .map(|k| {
+                let target = finite((row_weight[k % self.width] * self.targets[k]).abs());
+                let shared = (0..ng).map(|i| finite((e.jac[k * ng + i] * z[at(i)]).abs())).fold(0.0, f64::max);
+                let input = if nt > 0 { finite((e.jin[k] * z[nv + k / self.width]).abs()) } else { 0.0 };
+                target.max(shared).max(input)
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+/// The components a channel takes of each target (a point two, any other one).
+fn channel_width(c: Resolved) -> usize {
+    match c {
+        Resolved::Point(..) => 2,
+        Resolved::Angle { .. } | Resolved::Value(_) => 1,
     }
 }
 
