@@ -141,6 +141,7 @@ impl<K: SensKernel> ProblemOf<K> {
         }
         let inputs = resolve_timing(kernel.dims(), &task.timing, task.targets.len())?;
         check_turns(&kernel, &inputs)?;
+        one_motion(&inputs, &task.targets)?;
         if let Some(p) = &task.placement {
             for (name, (lo, hi)) in [("dx", p.dx), ("dy", p.dy), ("angle", p.angle), ("scale", p.scale)] {
                 check_bounds(name, lo, hi)?;
@@ -400,6 +401,27 @@ impl<K: SensKernel> ProblemOf<K> {
 /// ```
 pub fn default_newton() -> NewtonConfig {
     NewtonConfig::default().with_residual_tol(1e-14).with_step_tol(1e-16)
+}
+
+/// Refuses free timing of several targets that are all one (every value of every target
+/// equal): they ask only that the mechanism pass through that one, and a design that does
+/// meets them all at one input, which is no motion, the order defect of every such candidate.
+/// A search of four copies of a point a design of the box passes through ranked an exact fit
+/// (error 6e-16) as invalid for "order", below a valid one that missed by 0.39; of a point none
+/// reaches, it found no valid candidate and said only "order". (Prescribed inputs are kept: a
+/// point held still while the input turns, a dwell, is a task.)
+fn one_motion<X>(inputs: &Inputs<X>, targets: &[Vec<f64>]) -> Result<(), SynthesisError> {
+    if !matches!(inputs, Inputs::Free { .. }) || targets.len() < 2 || targets.iter().any(|t| *t != targets[0]) {
+        return Ok(());
+    }
+    let values: Vec<String> = targets[0].iter().map(|v| crate::number::Number(*v).to_string()).collect();
+    Err(SynthesisError::InvalidConfig(format!(
+        "all {} targets are one, ({}): with free timing they ask only that the mechanism pass through it, and a \
+         design that does meets them all at one input, no motion; give targets along the motion, or prescribe the \
+         inputs (`timed`) to hold it there while the input moves",
+        targets.len(),
+        values.join(", ")
+    )))
 }
 
 /// Refuses timing whose motion from target to target turns an angle input more than a sweep
