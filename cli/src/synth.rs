@@ -353,6 +353,7 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
                         None if kind == QuantityKind::Angle => (0.0, TAU),
                         None => return Err(exit::usage("targets without inputs need --range lo..hi")),
                     };
+                    one_point_untimed(rows, req.targets)?;
                     Ok(Task::path(point, rows.iter().map(xy)).untimed(lo, hi))
                 }
                 w if w == ni + 2 => {
@@ -416,6 +417,25 @@ fn task(model: &Model, req: &Request, rows: &[Vec<f64>]) -> Result<Task, Failed>
         }
         _ => Err(exit::usage("give the channel: --path POINT or --function INPUT:OUTPUT")),
     }
+}
+
+/// Refuses rows `x,y` without inputs that are all one point (two or more): they ask only that
+/// the path pass through it, and a design that does meets them all at one input, no motion (the
+/// library refuses them so, in its own terms: `timed`). Said in the command's: give points
+/// along the path, or the inputs.
+fn one_point_untimed(rows: &[Vec<f64>], targets: &Path) -> Result<(), Failed> {
+    if rows.len() < 2 || rows.iter().any(|r| *r != rows[0]) {
+        return Ok(());
+    }
+    Err(exit::usage(format!(
+        "{}: all {} targets are one point ({}, {}): without inputs they ask only that the path pass through it, and \
+         a design that does meets them all at one input, no motion; give points along the path, or the input of \
+         each (rows `input,x,y`) to hold the point there while the input moves",
+        targets.display(),
+        rows.len(),
+        Number(rows[0][0]),
+        Number(rows[0][1])
+    )))
 }
 
 /// `--range lo..hi` of an input of kind `kind` in the library's units (an angle's in radians,
@@ -590,7 +610,9 @@ fn table(report: &SynthesisReport, u: &Units) -> String {
 /// than a point that does not move (an output that does not change, for a function: its targets
 /// are values, and no point of the mechanism is fitted), the optimum within the bounds of
 /// `--vary` of targets those designs cannot reach. `path`: the targets are points (their last two columns), otherwise
-/// values (their last column), in the unit the errors are written.
+/// values (their last column), in the unit the errors are written. Targets that are all one
+/// point or one value (or one target) lie 0 from their centre, which every miss passes: their
+/// note says what they ask and gives the miss ([`one_target`]).
 fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path: bool) -> Option<String> {
     let best = report.best()?;
     let width = rows.first()?.len();
@@ -599,8 +621,15 @@ fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path
         false => value_reach(rows.iter().map(|r| r[width - 1]), units.turn),
     };
     let error = best.max_error * units.error;
+    // Targets all at one point (or one value, or one target) lie 0 from their centre (or a
+    // rounding of it): every miss is "as much or more", and the note below said nothing of a
+    // miss by 1000, or that such a miss is all a point held still can be judged by.
+    let columns = if path { width - 2 } else { width - 1 };
+    if reach == 0.0 || rows.iter().all(|r| r[columns..] == rows[0][columns..]) {
+        return Some(one_target(rows, path, error));
+    }
     let still = if path { "a point that does not move" } else { "an output that does not change" };
-    (reach > 0.0 && error >= reach).then(|| {
+    (error >= reach).then(|| {
         format!(
             "note: the best candidate misses its targets by {}, as much as they lie from their centre ({}) or \
              more: no better than {still}; the targets are likely out of reach of the designs --vary allows \
@@ -609,6 +638,33 @@ fn out_of_reach(report: &SynthesisReport, rows: &[Vec<f64>], units: &Units, path
             Number(reach)
         )
     })
+}
+
+/// The note where the targets `rows` are all one point of a path (`path`) or one value of a
+/// function (their last two columns, or their last), or there is one target: what they ask (a
+/// point or an output held still while the input moves), and how far the best candidate misses
+/// (`error`, in the unit written), all there is to judge whether the designs `--vary` allows
+/// hold it there.
+fn one_target(rows: &[Vec<f64>], path: bool, error: f64) -> String {
+    let (row, width) = (&rows[0], rows[0].len());
+    let (what, hold) = match path {
+        true => (
+            format!("one point ({}, {})", Number(row[width - 2]), Number(row[width - 1])),
+            "the point must stay there while the input moves",
+        ),
+        false => {
+            (format!("one value ({})", Number(row[width - 1])), "the output must stay at it while the input moves")
+        }
+    };
+    let targets = match rows.len() {
+        1 => format!("the only target is {what}"),
+        n => format!("all {n} targets are {what}: {hold}"),
+    };
+    format!(
+        "note: {targets}; the best candidate misses it by {} (where that is more than rounding, the designs --vary \
+         allows do not reach it: widen its bounds, or vary more parameters)",
+        Number(error)
+    )
 }
 
 /// How far the points `points` lie from their mean at most.

@@ -473,6 +473,40 @@ fn targets_out_of_reach_get_a_note() {
     assert!(!err.contains("a point that does not move"), "{err}");
 }
 
+/// Targets that are all one point (or one value) lie 0 from their centre, and the note of a
+/// miss "as much as they lie from their centre" never came: (1000, 1000) at four crank
+/// angles, which no design of the bounds reaches (missed by about 1410), was answered with a
+/// valid candidate and not a word. The note now says what such targets ask and how far the best
+/// candidate misses; the same for a function asked one value at every input. Without inputs,
+/// copies of one point are a usage error saying what to give (every exact fit met them at one
+/// input, and was rejected for "order").
+#[test]
+fn targets_all_at_one_point_get_a_note() {
+    let four_bar = shipped("coupler_four_bar.kl");
+    let vary = "a=0.8..1.4,b=2..3.5";
+    let timed = file("synth_one_point.csv", "0,1000,1000\n1.5,1000,1000\n3,1000,1000\n4.5,1000,1000\n");
+    let out = kinloop(&["synth", &four_bar, "--targets", &timed, "--path", "p", "--vary", vary, "--starts", "8"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    let said = "note: all 4 targets are one point (1000, 1000): the point must stay there while the input moves";
+    assert!(err.contains(said), "{err}");
+    let miss = err.split("the best candidate misses it by ").nth(1).and_then(|t| t.split(' ').next());
+    let miss: f64 = miss.and_then(|t| t.parse().ok()).unwrap_or_else(|| panic!("no miss in the note: {err}"));
+    // The coupler point stays within the crank and coupler-point lengths (at most 1.4 + 1.5 with
+    // these bounds) of the origin, which lies 1000 sqrt 2 from the target.
+    assert!((miss - 1000.0 * 2f64.sqrt()).abs() <= 2.9, "{miss}: {err}");
+    let function = file("synth_one_value.csv", "0,90\n90,90\n180,90\n");
+    let args = ["synth", &four_bar, "--targets", &function, "--function", "phi:gamma", "--vary", vary, "--deg"];
+    let out = kinloop(&[&args[..], &["--starts", "8"]].concat());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("note: all 3 targets are one value (90): the output must stay at it"), "{err}");
+    let untimed = file("synth_one_point_untimed.csv", "0.5,0.9\n0.5,0.9\n0.5,0.9\n");
+    let out = kinloop(&["synth", &four_bar, "--targets", &untimed, "--path", "p", "--vary", vary, "--starts", "8"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("all 3 targets are one point (0.5, 0.9)") && err.contains("rows `input,x,y`"), "{err}");
+}
+
 /// Angle targets on both sides of the half turn (179, -179.5, 179.5 and -179 degrees of the
 /// rocker) lie within a degree of 180, as the library measures an angle's error (modulo a
 /// turn): no design of the bounds turns the rocker near there (the best misses by about 61
