@@ -19,6 +19,12 @@ use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_inputs_finite, check_s
 /// ([`SweepResult::into_result`] for `?`). An input of the list that is not finite stops it
 /// there with [`Error::NonFinite`] naming the input (the states before it kept).
 ///
+/// Each state is at its own input but where the configuration says
+/// [`AtSingular::Continue`](crate::AtSingular::Continue): there an input at a singular crossing,
+/// or so near it that no solve pins the branch, gives the first well-conditioned state past the
+/// crossing, at that state's own input (`Kin::x`, a little past the crossing), as a sweep's
+/// sample is; compare `Kin::x` with the input where that matters.
+///
 /// Over any [`Kernel`], with its configuration ([`Kernel::solver_config`]): a compiled
 /// mechanism's ([`Named::sweep_at`](crate::Named::sweep_at)) or one whose sizes are known at run
 /// time (`kinloop_model::Model::sweep_at`). An input or a guess of another size than the
