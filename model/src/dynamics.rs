@@ -383,7 +383,7 @@ impl Model {
     /// let mut model = Model::read("crank.kl", text).unwrap();
     /// let cycle = model.inverse_cycle(SpeedLaw::Constant(10.0)).samples(72).run().unwrap();
     /// // At a constant speed and without loads, the mean driving torque vanishes.
-    /// assert!(cycle.mean_torque().abs() < 1e-12);
+    /// assert!(cycle.mean_torque().unwrap().abs() < 1e-12);
     /// ```
     pub fn inverse_cycle<'l>(&mut self, law: SpeedLaw<'l>) -> ModelCycle<'_, 'l> {
         ModelCycle { model: self, law, phi0: 0.0, samples: 360, guess: None, about: [0.0, 0.0] }

@@ -275,7 +275,7 @@ fn exercise(tally: &Tally, m: &Machine, model: &Model, machine: bool, v: Setting
             let values = [p.phi, p.omega, p.eps, p.inertia, p.inertia_slope, p.load, p.torque, s.moment];
             assert!(finite(values.into_iter().chain(s.force)), "{p:?}");
         }
-        assert!(c.mean_torque().is_finite());
+        assert!(c.mean_torque().is_ok_and(f64::is_finite));
         let resolved = 2 * harmonics < samples;
         let torque = c.torque_harmonics(harmonics);
         if !resolved {

@@ -492,7 +492,7 @@ impl Cycle {
     }
 
     /// Mean driving torque over the cycle: the mean of the samples' torques (finite for finite
-    /// torques; NaN for a cycle without points).
+    /// torques, even where their sum overflows).
     ///
     /// Over a whole steady cycle the inertia term of the torque, `1/2 J'(phi) omega^2`, has mean
     /// zero, and this is the constant torque that balances the loads, [`Flywheel::mean_torque`]
@@ -500,8 +500,37 @@ impl Cycle {
     /// is not zero (it aliases: 0.3 % of a slider-crank's mean torque at 8 samples a turn,
     /// rounding alone at 72): for the balancing torque of a coarse cycle use
     /// [`Cycle::flywheel`]'s.
-    pub fn mean_torque(&self) -> f64 {
-        mean(self.points.iter().map(|p| p.torque))
+    ///
+    /// The points must be one turn's samples, equally spaced (see [`Cycle::over_states`]), as
+    /// for the harmonics (whose `a0` this is) and the flywheel, with the same error, a
+    /// [`DynamicsError::BadValue`] naming the first angle out of place: a cycle of a sweep over
+    /// the closed turn, its last state repeating the first, counts that state twice (a
+    /// slider-crank's mean torque came out -0.470 where the turn's is 0). A cycle without points,
+    /// or with a torque that is not finite, is [`DynamicsError::BadValue`] too.
+    ///
+    /// ```
+    /// use kinloop_runtime::dynamics::{Cycle, CyclePoint, DynamicsError, Shaking};
+    /// // Eight samples of a turn of a torque `1 + cos phi`: its mean is 1.
+    /// let point = |j: usize| {
+    ///     let phi = std::f64::consts::TAU * j as f64 / 8.0;
+    ///     let shaking = Shaking { force: [0.0, 0.0], moment: 0.0 };
+    ///     CyclePoint::of(phi, 1.0, 0.0, &[1.0], &[0.0], &[-1.0 - phi.cos()], shaking).unwrap()
+    /// };
+    /// let turn = Cycle { points: (0..8).map(point).collect() };
+    /// assert!((turn.mean_torque()? - 1.0).abs() < 1e-15);
+    /// // The turn's end, which repeats its start, is not one of its samples.
+    /// let closed = Cycle { points: (0..=8).map(point).collect() };
+    /// assert!(matches!(closed.mean_torque(), Err(DynamicsError::BadValue { what: "cycle angle", .. })));
+    /// # Ok::<(), DynamicsError>(())
+    /// ```
+    pub fn mean_torque(&self) -> Result<f64, DynamicsError> {
+        for p in &self.points {
+            if !p.torque.is_finite() {
+                return Err(DynamicsError::BadValue { what: "cycle value", value: p.torque, why: "must be finite" });
+            }
+        }
+        self.check_turn()?;
+        Ok(mean(self.points.iter().map(|p| p.torque)))
     }
 
     /// Flywheel for a coefficient of speed fluctuation `delta = (omega_max - omega_min) /
@@ -539,9 +568,6 @@ impl Cycle {
                 value: delta,
                 why: "must lie in [1e-6, 2)",
             });
-        }
-        if self.points.is_empty() {
-            return Err(DynamicsError::BadValue { what: "cycle points", value: 0.0, why: "need at least one" });
         }
         for p in &self.points {
             for (what, value) in [("cycle load", p.load), ("cycle speed", p.omega), ("cycle inertia", p.inertia)] {
@@ -616,9 +642,12 @@ impl Cycle {
     /// flywheel's work take the points as such a turn: a cycle made by [`Cycle::over_states`]
     /// of a sweep over the closed turn `[phi0, phi0 + 2 pi]` (its last state repeating the
     /// first) was one of `n + 1` points, every harmonic and the work off by about `1 / n`, as
-    /// `Ok`; of part of a turn, or of points left out, the same.
+    /// `Ok`; of part of a turn, or of points left out, the same. A cycle without points is no
+    /// turn either (its mean is 0 / 0).
     fn check_turn(&self) -> Result<(), DynamicsError> {
-        let Some(first) = self.points.first() else { return Ok(()) };
+        let Some(first) = self.points.first() else {
+            return Err(DynamicsError::BadValue { what: "cycle points", value: 0.0, why: "need at least one" });
+        };
         let step = TAU / self.points.len() as f64;
         let misplaced = self.points.iter().enumerate().find(|&(j, p)| {
             let off = p.phi - (first.phi + j as f64 * step);

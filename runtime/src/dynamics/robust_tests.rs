@@ -123,7 +123,8 @@ fn harmonics_and_means_of_huge_values_are_computed_scaled() {
     let f = c.torque_harmonics(3).unwrap();
     assert!((f.a0 / 8e307 - 1.0).abs() < 1e-12 && (f.a[0] / 8e307 - 1.0).abs() < 1e-12, "{f:?}");
     assert!(f.a[1].abs() < 1e-12 * 8e307 && f.b[0].abs() < 1e-12 * 8e307, "{f:?}");
-    assert!((c.mean_torque() / 8e307 - 1.0).abs() < 1e-12, "{}", c.mean_torque());
+    let mean = c.mean_torque().unwrap();
+    assert!((mean / 8e307 - 1.0).abs() < 1e-12, "{mean}");
     assert!(c.shaking_harmonics(3).is_ok());
     // The same at ordinary magnitudes, bit for bit as before the scaling (a power of two).
     let small = cycle(16, 3.0);

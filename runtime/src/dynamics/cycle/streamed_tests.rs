@@ -58,14 +58,15 @@ fn a_kinematic_failure_anywhere_on_the_turn_comes_before_a_point_s_error() {
     assert!(matches!(r, Err(DynamicsError::BadValue { what: "speed law", .. })), "{r:?}");
 }
 
-/// The harmonics and the flywheel take the points as one turn's samples. A cycle of the states
-/// of a sweep over the closed turn `[0, 2 pi]` (96 intervals, 97 states, the last repeating the
-/// first) was taken for 97 samples of a turn: the mean of its driving torque (`a0` of its
-/// harmonics) came out -0.470, the first sample's -45.6 counted twice over 97, where the turn's
-/// is 0 (1e-15), as `Ok`. It is refused, naming the first angle out of place, as is a half turn;
-/// the turn's states without their end give the turn's cycle, bit for bit.
+/// The harmonics, the mean torque and the flywheel take the points as one turn's samples. A
+/// cycle of the states of a sweep over the closed turn `[0, 2 pi]` (96 intervals, 97 states, the
+/// last repeating the first) was taken for 97 samples of a turn: the mean of its driving torque
+/// (`a0` of its harmonics, and `mean_torque`, which checked nothing) came out -0.470, the first
+/// sample's -45.6 counted twice over 97, where the turn's is 0 (1e-15), as `Ok`. It is refused,
+/// naming the first angle out of place, as is a half turn; the turn's states without their end
+/// give the turn's cycle, bit for bit.
 #[test]
-fn a_cycle_of_other_points_than_one_turn_has_no_harmonics_and_no_flywheel() {
+fn a_cycle_of_other_points_than_one_turn_has_no_harmonics_no_mean_torque_and_no_flywheel() {
     let m = SliderCrank { r: 1.0, l: 3.0, e: 0.5 };
     let model = slider_mass();
     let law = SpeedLaw::Constant(10.0);
@@ -84,6 +85,7 @@ fn a_cycle_of_other_points_than_one_turn_has_no_harmonics_and_no_flywheel() {
     for r in [
         wrong.torque_harmonics(2).map(|_| ()),
         wrong.shaking_harmonics(2).map(|_| ()),
+        wrong.mean_torque().map(|_| ()),
         wrong.flywheel(0.05).map(|_| ()),
     ] {
         let said = r.as_ref().err().map(ToString::to_string).unwrap_or_default();
@@ -93,10 +95,20 @@ fn a_cycle_of_other_points_than_one_turn_has_no_harmonics_and_no_flywheel() {
     let half = Cycle { points: turn.points[..48].to_vec() };
     assert!(matches!(half.torque_harmonics(2), Err(DynamicsError::BadValue { what: "cycle angle", .. })));
     assert!(matches!(half.flywheel(0.05), Err(DynamicsError::BadValue { what: "cycle angle", .. })));
-    // Without the repeated end: the turn's cycle.
+    assert!(matches!(half.mean_torque(), Err(DynamicsError::BadValue { what: "cycle angle", .. })));
+    // No points are no turn (their mean is 0 / 0), for the flywheel as before.
+    let none = Cycle { points: Vec::new() };
+    assert!(matches!(none.mean_torque(), Err(DynamicsError::BadValue { what: "cycle points", .. })));
+    assert!(matches!(none.flywheel(0.05), Err(DynamicsError::BadValue { what: "cycle points", .. })));
+    // Without the repeated end: the turn's cycle. Its mean torque is zero (at constant speed and
+    // without loads, the mean of `1/2 J' omega^2` over a turn) up to the rounding of a sum of 96
+    // torques, taken as 1e-12 of the largest: far below the -0.470 (1 % of it) of the closed turn.
     let open = Cycle::over_states(&states[..96], law, evaluate).unwrap();
     assert_eq!(open, turn);
     assert_eq!(open.torque_harmonics(2).unwrap(), turn.torque_harmonics(2).unwrap());
+    let largest = turn.points.iter().fold(0.0f64, |m, p| m.max(p.torque.abs()));
+    let mean = open.mean_torque().unwrap();
+    assert!(mean.abs() <= 1e-12 * largest, "{mean} of torques up to {largest}");
     assert!(open.flywheel(0.05).is_ok());
 }
 
