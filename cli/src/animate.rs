@@ -6,7 +6,7 @@
 use crate::cam::{self, FollowerArgs, Found};
 use crate::cam_drawn;
 use crate::exit::usage;
-use crate::solve::{Notes, degrees, in_units, model_inputs, named, parse_inputs};
+use crate::solve::{Notes, degrees, in_units, model_inputs, named, parse_inputs, text_in_units};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -130,7 +130,11 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         Ok(motion) => motion,
         // The runtime's refusal of the arguments (`to` equal to `from`, a range of more turns
         // than a sweep follows) is a usage error.
-        Err(DrawError::Sweep(e @ Error::InvalidArgument(_))) => return Err(usage(format!("{name}: {e}"))),
+        // So is the start's (a loop whose lengths are all zero), said where it was solved in the
+        // units given.
+        Err(DrawError::Sweep(e @ Error::InvalidArgument(_))) => {
+            return Err(usage(format!("{name}: {}", text_in_units(model, e, &from, req.deg))));
+        }
         Err(DrawError::Sweep(e @ Error::RangeTooLong { .. })) => {
             return Err(range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| failed(&e)));
         }
@@ -294,10 +298,16 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
     let Endpoints { from, to, guess } = endpoints(model, req)?;
     grid_ends(model.inputs(), &from, &to, &counts, req)?;
     let kinds = model.input_kinds().to_vec();
-    let grid = model.grid(&from, &to, &counts, &guess).map_err(|e| match e {
+    let grid = model.grid(&from, &to, &counts, &guess);
+    let grid = grid.map_err(|e| match e {
         // The counts or ranges refused (no value of an input, equal ends, too many cells, a
         // range no sweep follows: its ends as they were given).
-        DrawError::InvalidSetting(_) | DrawError::Sweep(Error::InvalidArgument(_)) => usage(format!("{name}: {e}")),
+        DrawError::InvalidSetting(_) => usage(format!("{name}: {e}")),
+        // So is the first cell's invalid argument (a loop whose lengths are all zero), said
+        // where it was solved in the units given.
+        DrawError::Sweep(e @ Error::InvalidArgument(_)) => {
+            usage(format!("{name}: {}", DrawError::Sweep(text_in_units(model, e, &from, req.deg))))
+        }
         e @ DrawError::GridRange { .. } => {
             let is_angle = |i| kinds.get(i) == Some(&QuantityKind::Angle);
             let e = if req.deg { e.in_degrees(is_angle, degrees) } else { e };

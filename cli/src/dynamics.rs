@@ -186,6 +186,9 @@ fn cycle_and_flywheel(
     let cycle = match cycle {
         Ok(cycle) => cycle,
         Err(e) => {
+            // The start's invalid argument (a loop whose lengths are all zero) where it was
+            // solved, in the units given.
+            let e = crate::solve::text_in_units(model, e, &[start], req.deg);
             let locked = locks(&e);
             let failed = failed_cycle(name, e, locked, model.input_kinds(), req);
             // Where the lengths make the crank a rocker: its stretch.

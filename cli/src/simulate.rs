@@ -18,7 +18,7 @@
 use crate::dynamics::{LOCKED, bad_mass, check_crank, locks};
 use crate::exit::usage;
 use crate::numbers::between;
-use crate::solve::{degrees, in_units};
+use crate::solve::{degrees, in_units, text_in_units};
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
@@ -82,7 +82,11 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     let angle = if req.deg { 180.0 / std::f64::consts::PI } else { 1.0 };
     let kinds = model.input_kinds().to_vec();
-    let mut table = simulate_table(model, req, angle).map_err(|e| failure(&name, e, &kinds, req))?;
+    let table = simulate_table(model, req, angle);
+    // A failure of the start's solve (a loop whose lengths are all zero) said where it was
+    // solved, in the units given.
+    let mut table =
+        table.map_err(|e| failure(&name, text_in_units(model, e, &[req.start / angle], req.deg), &kinds, req))?;
     // The first row is the start, at time 0: its angle and speed as given, as `solve` writes
     // the inputs given, not their radians times `180/π` (`--start 30 --deg` was written
     // `29.999999999999996`). In radians the same numbers.

@@ -4,7 +4,8 @@ use crate::numbers::number;
 use crate::{Failed, exit};
 use kinloop_model::{Count, Model, StepError};
 use kinloop_runtime::dynamics::DynamicsError;
-use kinloop_runtime::{Error, EventKind, NewtonConfig, Number, QuantityKind, Source, Table};
+use kinloop_runtime::{Error, EventKind, Location, NewtonConfig, Number, QuantityKind, Source, Table};
+use std::borrow::Cow;
 
 /// Solves at every `--at` and writes the table of the states solved to standard output: a
 /// failed one is explained on standard error and left out, the others written (each is solved
@@ -88,7 +89,65 @@ fn explain(
         return (format!("{whence}: {e}"), None);
     }
     let e = model.explain(x, &guess, &NewtonConfig::default(), e);
-    (named(whence, &in_units(e.clone(), kinds, deg)), Some(e))
+    (named(whence, &in_units(text_in_units(model, e.clone(), x, deg), kinds, deg)), Some(e))
+}
+
+/// `e`, an error of a solve of `model` at the inputs `x` (in the model's units), with the
+/// location written into its text in the units written: angles in degrees where `deg` is set.
+/// The runtime writes the location of a loop whose lengths are all zero into the text of an
+/// [`Error::InvalidArgument`] (``... all have length zero in `FourBar` at phi =
+/// 0.5235987755982988 (block 0: ...)``), which carries no location for [`in_units`] to convert:
+/// where the text names the location of `x` exactly as the runtime writes it, its inputs are
+/// written as [`in_units`] writes every other error's (`phi = 30`); a text that names none, or
+/// another location (of a failure after the first solve), is left as it is. A kinematic failure
+/// inside a dynamics error is converted inside it. Other errors are returned as they are: their
+/// locations are [`in_units`]' to convert, once.
+pub fn text_in_units(model: &Model, e: Error, x: &[f64], deg: bool) -> Error {
+    if !deg {
+        return e;
+    }
+    match e {
+        Error::InvalidArgument(text) => Error::InvalidArgument(located_in_units(model, &text, x, deg)),
+        Error::Dynamics(source) => match source.downcast_ref::<DynamicsError>() {
+            Some(DynamicsError::Kinematics { t, source: inner @ Error::InvalidArgument(_) }) => {
+                let source = text_in_units(model, inner.clone(), x, deg);
+                // Wrapped as it came (not through `From`, which unwraps a kinematic failure and
+                // drops the time it happened at).
+                Error::Dynamics(Source::new(DynamicsError::Kinematics { t: *t, source }))
+            }
+            _ => Error::Dynamics(source),
+        },
+        e => e,
+    }
+}
+
+/// `text` (of an [`Error::InvalidArgument`]: see [`text_in_units`]) with the location of `model`
+/// at the inputs `x` (as [`Location`] writes it, without a block) written with its angles in
+/// degrees where `deg` is set, wherever it stands whole: not followed by what would go on with
+/// its last number (the location at `0.5` is not the start of the one at `0.55`).
+pub fn located_in_units(model: &Model, text: &str, x: &[f64], deg: bool) -> String {
+    if !deg {
+        return text.to_owned();
+    }
+    let location = |values: Vec<f64>| {
+        let names = model.inputs().iter().map(|n| Cow::Owned(n.clone()));
+        Location { mechanism: Cow::Owned(model.name().to_owned()), inputs: names.zip(values).collect(), block: None }
+            .to_string()
+    };
+    let angles = model.input_kinds().iter().map(|k| *k == QuantityKind::Angle);
+    let computed = location(x.to_vec());
+    let written = location(x.iter().zip(angles).map(|(&v, angle)| if angle { degrees(v) } else { v }).collect());
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find(&computed) {
+        let end = i + computed.len();
+        let whole = !rest[end..].starts_with(|c: char| c.is_ascii_alphanumeric() || c == '.');
+        out.push_str(&rest[..i]);
+        out.push_str(if whole { &written } else { &computed });
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// The error `e` of the model `name` as a line says it: the error alone where its location
@@ -260,7 +319,7 @@ impl Notes {
 /// ([`crate::assembles::note`]).
 pub fn start_failed(model: &mut Model, name: &str, e: Error, (at, to): (&[f64], Option<&[f64]>), deg: bool) -> Failed {
     let kinds = model.input_kinds().to_vec();
-    let failed = solve_failed(name, e.clone(), &kinds, deg);
+    let failed = solve_failed(name, text_in_units(model, e.clone(), at, deg), &kinds, deg);
     crate::assembles::note(model, &e, at, to, deg);
     failed
 }
@@ -362,4 +421,25 @@ pub fn factors(model: &Model, kinds: &[QuantityKind], deg: bool) -> Vec<f64> {
         }
     }
     f
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The location of the inputs solved at is converted where it stands whole, and only
+    /// there: the location at `0.5` begins the one at `0.55`, which is another solve's.
+    #[test]
+    fn a_location_in_a_text_is_converted_where_it_is_the_one_solved_at() {
+        let text = "pub struct Crank { params r = 1, l = 3; input phi; unknowns psi = 0, x = 3; loop a: r @ phi == (x, 0) + l @ psi; }";
+        let model = Model::read("crank.kl", text).expect("the crank reads");
+        let said = |phi: &str| format!("zero in `Crank` at phi = {phi} (block 0: ...): give them values");
+        let at = |phi: f64, deg| located_in_units(&model, &said(&Number(0.55).to_string()), &[phi], deg);
+        assert_eq!(at(0.55, true), said(&Number(degrees(0.55)).to_string()));
+        assert_eq!(at(0.55, false), said("0.55"));
+        assert_eq!(at(0.5, true), said("0.55"));
+        // At the text's end too.
+        let end = located_in_units(&model, "in `Crank` at phi = 0.5", &[0.5], true);
+        assert_eq!(end, format!("in `Crank` at phi = {}", Number(degrees(0.5))));
+    }
 }

@@ -1605,3 +1605,65 @@ fn a_sweep_in_radians_writes_the_decimals_between_its_ends() {
         }
     }
 }
+
+/// Every subcommand that solves the mechanism, run where the loops' lengths are all zero (the
+/// shipped mechanisms with their lengths given as 0, as a parameter left unset is) from the
+/// input `at` (`30` for the four-bar's and the engine's, and the five-bar's `10,20` for
+/// `animate --grid`; in degrees where `deg` is set), with the input's location as the error
+/// names it: `phi = 30` (or `th1 = 10, th2 = 20` for the five-bar).
+fn on_zero_loops(at: [&str; 2], deg: bool) -> Vec<(Vec<String>, String)> {
+    let (four_bar, five_bar, engine, cam) =
+        (shipped("four_bar.kl"), shipped("five_bar.kl"), shipped("engine.kl"), shipped("dwell_cam.kl"));
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let (svg, html) =
+        (out.join("zero_loop.svg").display().to_string(), out.join("zero_loop.html").display().to_string());
+    let [at, next] = at;
+    let zero = ["--params", "a=0,b=0,c=0,d=0"];
+    let engine_zero = ["--params", "r=0,l=0,e=0"];
+    let runs: Vec<Vec<&str>> = vec![
+        [&["solve", &four_bar], &zero[..], &["--at", at]].concat(),
+        [&["sweep", &four_bar], &zero[..], &["--from", at, "--to", next]].concat(),
+        [&["trace", &four_bar], &zero[..], &["--from", at, "--to", next]].concat(),
+        [&["extremes", &four_bar], &zero[..], &["--from", at, "--to", next]].concat(),
+        [&["animate", &four_bar], &zero[..], &["--from", at, "--to", next, "--out", &svg]].concat(),
+        [&["dynamics", &engine], &engine_zero[..], &["--speed", "150", "--start", at]].concat(),
+        [&["simulate", &engine], &engine_zero[..], &["--speed", "150", "--time", "0.01", "--start", at]].concat(),
+        vec!["cam", &cam, "--point", "follower", "--guide", "0,1", "--roller", "10", "--start", at, "--params"],
+    ];
+    let mut runs: Vec<(Vec<String>, String)> =
+        runs.into_iter().map(|run| (run.into_iter().map(str::to_string).collect(), format!("phi = {at} "))).collect();
+    // The cam's rod and rocker of length zero on a pivot at the origin.
+    runs.last_mut().expect("the cam's run").0.push("l_rod=0,c=0,d_x=0,d_y=0".into());
+    let (from, to) = if deg { ("10,20", "30,40") } else { ("0.1,0.2", "0.3,0.4") };
+    let grid = ["animate", &five_bar, "--grid", "--from", from, "--to", to, "--samples", "3,3", "--out", &html];
+    let grid = [&grid[..], &["--params", "a=0,b=0,c=0,d=0,e=0"]].concat();
+    let (th1, th2) = from.split_once(',').expect("two inputs");
+    runs.push((grid.into_iter().map(str::to_string).collect(), format!("th1 = {th1}, th2 = {th2} ")));
+    if deg {
+        for (args, _) in &mut runs {
+            args.push("--deg".into());
+        }
+    }
+    runs
+}
+
+/// The error of a loop whose lengths are all zero (`Error::InvalidArgument`, whose text names
+/// where it was found: it carries no location to convert) names the input as given, in degrees
+/// with `--deg`, under every subcommand: it was written in the radians solved at (`phi =
+/// 0.5235987755982988` of the 30 typed), where every other error's location is converted.
+#[test]
+fn a_loop_whose_lengths_are_all_zero_is_located_in_the_units_given() {
+    for (deg, at) in [(true, ["30", "60"]), (false, ["0.5", "1"])] {
+        for (args, located) in on_zero_loops(at, deg) {
+            let out = kinloop(&args.iter().map(String::as_str).collect::<Vec<_>>());
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(!out.status.success(), "{args:?}: {err}");
+            assert!(err.contains("all have length zero"), "{args:?}: {err}");
+            assert!(err.contains(&format!("at {located}")), "{args:?}: {err}");
+            // Not the radians of 30, 10 or 20 degrees.
+            for radians in ["0.5235987755982988", "0.17453292519943295", "0.3490658503988659"] {
+                assert!(!err.contains(radians), "{args:?}: {err}");
+            }
+        }
+    }
+}
