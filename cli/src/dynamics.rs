@@ -9,7 +9,7 @@
 
 use crate::exit::usage;
 use crate::own_columns::{self, Own};
-use crate::solve::{Notes, in_units, named, point};
+use crate::solve::{Notes, exit_code, in_units, named, point};
 use crate::sweep::sample_as_given;
 use crate::{Failed, exit, samples};
 use kinloop_model::Model;
@@ -241,12 +241,15 @@ fn failed_cycle(name: &str, e: Error, locked: bool, kinds: &[QuantityKind], req:
     // A sweep stopped on the turn says what goes on in the library's names (`trace_curve`,
     // `AtSingular::Continue`): the notes name the command line's, as under `sweep`'s error.
     let notes = Notes::of(&e);
+    // The code of the error as a sweep's or a solve's (a loop whose lengths are all zero is a
+    // usage error there, and was a failed solve here).
+    let code = exit_code(&e);
     eprintln!("error: {}", named(name, &in_units(e, kinds, req.deg)));
     notes.write();
     if locked {
         eprintln!("{LOCKED}");
     }
-    Failed(exit::SOLVE_FAILED)
+    Failed(code)
 }
 
 /// Whether `e` is the runtime's shaking force or moment beyond the range of f64.

@@ -2,8 +2,8 @@
 
 /// A solve failed (no assembly, singular position, ...).
 pub const SOLVE_FAILED: u8 = 1;
-/// Wrong arguments, or a parameter without a value (also clap's code for its own usage
-/// errors).
+/// Wrong arguments, a parameter without a value, or parameters that leave a loop's lengths all
+/// zero (as unset ones are) (also clap's code for its own usage errors).
 pub const USAGE: u8 = 2;
 /// The declaration is rejected: its diagnostics are on standard error.
 pub const DATA_ERR: u8 = 65;

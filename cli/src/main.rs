@@ -22,11 +22,12 @@
 //! standard error when it is a terminal.
 //!
 //! Exit codes ([`exit`]): 0 success, 1 a solve failed (for `synth`: no valid candidate), 2 a
-//! usage error (a parameter without a value too), 65 the declaration is rejected (diagnostics on
-//! standard error), 66 the file cannot be read, 69 the declaration uses what the run-time
-//! evaluator does not evaluate yet, 73 the `--events` file (or the `animate --out`,
-//! `dynamics --flywheel` or `cam --plot` file) cannot be created, 74 an output cannot be written
-//! (the help and the version too; a closed standard output too, found before anything is done).
+//! usage error (a parameter without a value, or parameters that leave a loop's lengths all
+//! zero, too), 65 the declaration is rejected (diagnostics on standard error), 66 the file
+//! cannot be read, 69 the declaration uses what the run-time evaluator does not evaluate yet,
+//! 73 the `--events` file (or the `animate --out`, `dynamics --flywheel` or `cam --plot` file)
+//! cannot be created, 74 an output cannot be written (the help and the version too; a closed
+//! standard output too, found before anything is done).
 
 // Std's `eprintln!` and `eprint!` panic where standard error cannot be written (its reader
 // gone: `kinloop sweep ... 2>&1 | head -1`), and the panic message is lost with it: exit code
@@ -164,7 +165,8 @@ enum Command {
         decl: Declaration,
         /// The inputs of one state, separated by commas (one value per input); repeat for more
         /// states (each solved from the declared guess; where one fails, the others are written
-        /// and the exit code is 1).
+        /// and the exit code is 1, or 2 where a failure is a usage error: a loop whose lengths
+        /// are all zero).
         #[arg(long, required = true, value_name = "X,...", allow_hyphen_values = true)]
         at: Vec<String>,
         /// Angles in degrees (inputs given and values written); otherwise radians.

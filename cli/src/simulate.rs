@@ -19,7 +19,7 @@ use crate::dynamics::{LOCKED, bad_mass, check_crank, locks};
 use crate::exit::usage;
 use crate::numbers::between;
 use crate::solve::{degrees, in_units, text_in_units};
-use crate::{Failed, exit, samples};
+use crate::{Failed, samples};
 use kinloop_model::{Count, Model};
 use kinloop_runtime::dynamics::{DenseStep, DynamicsError, RunConfig};
 use kinloop_runtime::{Error, Number, QuantityKind, Table};
@@ -239,11 +239,14 @@ fn failure(name: &str, e: Error, kinds: &[QuantityKind], req: &Request) -> Faile
         _ => {}
     }
     let locked = locks(&e);
+    // The code of the error as a sweep's or a solve's (a loop whose lengths are all zero, in
+    // the kinematics of the start, is a usage error there, and was a failed solve here).
+    let code = crate::solve::exit_code(&e);
     eprintln!("error: {}", crate::solve::named(name, &in_units(e, kinds, deg)));
     if locked {
         eprintln!("{LOCKED}");
     }
-    Failed(exit::SOLVE_FAILED)
+    Failed(code)
 }
 
 /// The turns of the input that `--speed` and `--time` imply at that speed, for a message that

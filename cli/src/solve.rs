@@ -9,7 +9,9 @@ use std::borrow::Cow;
 
 /// Solves at every `--at` and writes the table of the states solved to standard output: a
 /// failed one is explained on standard error and left out, the others written (each is solved
-/// on its own from the declared guess), and the exit code is the failure's.
+/// on its own from the declared guess), and the exit code is the failures' ([`exit_code`]): a
+/// usage error where any is one (the arguments are to be changed whatever else failed), else
+/// [`exit::SOLVE_FAILED`].
 pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     let kinds: Vec<QuantityKind> = model.quantities().iter().map(|(_, k)| *k).collect();
     let ni = model.inputs().len();
@@ -19,7 +21,7 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
     // Every `--at` read before any is solved: a mistyped one is the arguments' error, found
     // before states are written.
     let xs = at.iter().map(|spec| model_inputs(spec, &kinds[..ni], deg, "--at")).collect::<Result<Vec<_>, _>>()?;
-    let mut failed = false;
+    let mut failed = None;
     // A state nearer a singular position than a sweep accepts is written with a note: its
     // analogs are large and carry the rounding (a sweep would locate the position there).
     let near = model.sweep_config().singular_pivot;
@@ -39,6 +41,10 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
             Err(e) => {
                 let (why, e) = explain(model, &x, e, &kinds[..ni], deg, &format!("{name} at {spec}"));
                 let singular = matches!(e, Some(Error::Singular { .. }));
+                // The code of the error as `sweep` and every other subcommand give it (a loop whose
+                // lengths are all zero was 1 here, 2 there).
+                let code = e.as_ref().map_or(exit::SOLVE_FAILED, exit_code);
+                failed = Some(if failed == Some(exit::USAGE) { exit::USAGE } else { code });
                 eprintln!("error: {why}");
                 if let Some(e) = &e {
                     crate::assembles::note(model, e, &x, None, deg);
@@ -51,7 +57,6 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
                          positions (not at a change point, where two branches cross)"
                     );
                 }
-                failed = true;
                 continue;
             }
         };
@@ -69,7 +74,10 @@ pub fn run(model: &mut Model, at: &[String], deg: bool) -> Result<(), Failed> {
         let table = table.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
         crate::output::table(&table, "the table")?;
     }
-    if failed { Err(Failed(exit::SOLVE_FAILED)) } else { Ok(()) }
+    match failed {
+        Some(code) => Err(Failed(code)),
+        None => Ok(()),
+    }
 }
 
 /// Why the solve of `model` at `x` from the declared guess failed with `e`, as the runtime says
@@ -326,10 +334,17 @@ pub fn start_failed(model: &mut Model, name: &str, e: Error, (at, to): (&[f64], 
 
 /// The exit code of a failed solve's error `e`: a usage error ([`exit::USAGE`]) where the
 /// arguments stand in the way, not the mechanism (an input too coarse where the range lies: a
-/// range far out, to be reduced by whole turns), [`exit::SOLVE_FAILED`] otherwise.
+/// range far out, to be reduced by whole turns; an invalid argument, such as a loop whose
+/// lengths are all zero, parameters left at 0), [`exit::SOLVE_FAILED`] otherwise. A kinematic
+/// failure inside a dynamics error (an inverse cycle's, a simulation's) is judged as itself:
+/// the same failure has one code under every subcommand.
 pub fn exit_code(e: &Error) -> u8 {
     match e {
         Error::InputTooCoarse { .. } | Error::RangeTooLong { .. } | Error::InvalidArgument(_) => exit::USAGE,
+        Error::Dynamics(source) => match source.downcast_ref::<DynamicsError>() {
+            Some(DynamicsError::Kinematics { source, .. }) => exit_code(source),
+            _ => exit::SOLVE_FAILED,
+        },
         _ => exit::SOLVE_FAILED,
     }
 }

@@ -1667,3 +1667,25 @@ fn a_loop_whose_lengths_are_all_zero_is_located_in_the_units_given() {
         }
     }
 }
+
+/// A loop whose lengths are all zero is a usage error (exit code 2: the parameters are at
+/// fault, as a parameter without a value is) under every subcommand that solves, in degrees
+/// or not: `solve`, `dynamics` and `simulate` exited 1 (a failed solve) where `sweep`, `trace`,
+/// `extremes`, `animate` and `cam` exited 2. `solve` of several `--at` too; a solve that fails
+/// for the mechanism (no assembly) stays 1.
+#[test]
+fn a_loop_whose_lengths_are_all_zero_is_a_usage_error_under_every_subcommand() {
+    for (deg, at) in [(true, ["30", "60"]), (false, ["0.5", "1"])] {
+        for (args, _) in on_zero_loops(at, deg) {
+            let out = kinloop(&args.iter().map(String::as_str).collect::<Vec<_>>());
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(err.contains("all have length zero"), "{args:?}: {err}");
+            assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        }
+    }
+    let four_bar = shipped("four_bar.kl");
+    let code =
+        |params: &str| kinloop(&["solve", &four_bar, "--params", params, "--at", "0.5", "--at", "1"]).status.code();
+    assert_eq!(code("a=0,b=0,c=0,d=0"), Some(2));
+    assert_eq!(code("a=1,b=3,c=2.5,d=10"), Some(1));
+}
