@@ -13,9 +13,11 @@
 #[path = "../cam_linkage.rs"]
 mod cam_linkage;
 
+mod turn_search;
+
 use cam_linkage::extremes;
 use kinloop_fixtures::cam_linkage::CamLinkage;
-use std::f64::consts::TAU;
+use turn_search::{angle_gap, smallest};
 
 /// The example's drive and one with a larger eccentricity, a shorter arm and another bell-crank
 /// angle (still a crank-rocker: `e + |OA| = 95.4 <= r_cam + r_roller + l_arm = 103`).
@@ -46,28 +48,6 @@ fn pose(m: &CamLinkage, phi: f64) -> (f64, f64) {
     let psi = (py - m.a_y).atan2(px - m.a_x);
     let (qx, qy) = (m.a_x + m.l_out * (psi + m.delta).cos(), m.a_y + m.l_out * (psi + m.delta).sin());
     (psi, qx + (m.l_rod * m.l_rod - (m.h - qy).powi(2)).sqrt())
-}
-
-/// The cam angle (degrees in `[0, 360)`) and value of the smallest of `f` over a turn: the best
-/// of 36,000 samples, refined by golden sections between its neighbours down to 1e-13 rad.
-fn smallest(f: impl Fn(f64) -> f64) -> (f64, f64) {
-    let n = 36_000;
-    let step = TAU / n as f64;
-    let best = (0..n).map(|k| k as f64 * step).min_by(|a, b| f(*a).total_cmp(&f(*b))).expect("samples");
-    let (mut a, mut b) = (best - step, best + step);
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    while b - a > 1e-13 {
-        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-        if f(x1) < f(x2) { b = x2 } else { a = x1 }
-    }
-    let x = 0.5 * (a + b);
-    (x.to_degrees().rem_euclid(360.0), f(x))
-}
-
-/// The difference of two angles in degrees, across the turn's seam.
-fn angle_gap(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(360.0);
-    d.min(360.0 - d)
 }
 
 /// Values to 1e-12 of the swing (in degrees) or of the stroke: at an extreme the quantity is

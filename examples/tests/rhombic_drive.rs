@@ -13,9 +13,11 @@
 #[path = "../rhombic_drive.rs"]
 mod rhombic_drive;
 
+mod turn_search;
+
 use kinloop_fixtures::RhombicDrive;
 use rhombic_drive::extremes;
-use std::f64::consts::TAU;
+use turn_search::{angle_gap, smallest};
 
 /// The gallery's drive and one with other proportions (a larger displacer offset, arms nearly
 /// square, the crank centre below the piston's line).
@@ -43,28 +45,6 @@ fn published(m: &RhombicDrive, phi1: f64) -> (f64, f64) {
     let s4 = lam_b * (k_b + (phi1 + m.gamma).sin());
     let (c2, c4) = ((1.0 - s2 * s2).sqrt(), -(1.0 - s4 * s4).sqrt());
     (m.l_p * (lam_p * phi1.cos() - c2), m.l_b * (lam_b * (phi1 + m.gamma).cos() - c4))
-}
-
-/// The crank angle (degrees in `[0, 360)`) and value of the smallest of `f` over a turn: the best
-/// of 36,000 samples, refined by golden sections between its neighbours down to 1e-13 rad.
-fn smallest(f: impl Fn(f64) -> f64) -> (f64, f64) {
-    let n = 36_000;
-    let step = TAU / n as f64;
-    let best = (0..n).map(|k| k as f64 * step).min_by(|a, b| f(*a).total_cmp(&f(*b))).expect("samples");
-    let (mut a, mut b) = (best - step, best + step);
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    while b - a > 1e-13 {
-        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-        if f(x1) < f(x2) { b = x2 } else { a = x1 }
-    }
-    let x = 0.5 * (a + b);
-    (x.to_degrees().rem_euclid(360.0), f(x))
-}
-
-/// The difference of two angles in degrees, across the turn's seam.
-fn angle_gap(a: f64, b: f64) -> f64 {
-    let d = (a - b).rem_euclid(360.0);
-    d.min(360.0 - d)
 }
 
 /// The located and the closed-form extremes against the brute-force search. Values to 1e-12 of

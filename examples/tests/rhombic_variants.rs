@@ -10,9 +10,12 @@
 #[path = "../rhombic_variants.rs"]
 mod rhombic_variants;
 
+mod turn_search;
+
 use kinloop_fixtures::{DisplacerRodDrive, WorkingRodDrive};
 use rhombic_variants::report;
 use std::f64::consts::TAU;
+use turn_search::smallest;
 
 /// Fig. 2 at crank angle `phi`: `(X_C, X_F)`. F to the right of B at `l_b`, D on the rigid rod,
 /// C to the left of D at `l_p`.
@@ -32,22 +35,6 @@ fn fig3(m: &WorkingRodDrive, phi: f64) -> (f64, f64) {
     let phi2 = by.atan2(bx - x_c);
     let (dx, dy) = (x_c + m.l_cd * (phi2 + m.gamma_p).cos(), m.l_cd * (phi2 + m.gamma_p).sin());
     (x_c, dx + (m.l_b * m.l_b - (dy - m.de).powi(2)).sqrt())
-}
-
-/// The crank angle (degrees in `[0, 360)`) and value of the smallest of `f` over a turn: the best
-/// of 36,000 samples, refined by golden sections between its neighbours down to 1e-13 rad.
-fn smallest(f: impl Fn(f64) -> f64) -> (f64, f64) {
-    let n = 36_000;
-    let step = TAU / n as f64;
-    let best = (0..n).map(|k| k as f64 * step).min_by(|a, b| f(*a).total_cmp(&f(*b))).expect("samples");
-    let (mut a, mut b) = (best - step, best + step);
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    while b - a > 1e-13 {
-        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-        if f(x1) < f(x2) { b = x2 } else { a = x1 }
-    }
-    let x = 0.5 * (a + b);
-    (x.to_degrees().rem_euclid(360.0), f(x))
 }
 
 /// `[piston stroke, displacer stroke, outer phase shift, inner phase shift]` of a drive whose
