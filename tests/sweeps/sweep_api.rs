@@ -184,6 +184,15 @@ fn trace_options_are_validated_naming_the_field() {
         let e = m.trace_curve(0.0, to, &g, &opts).unwrap_err();
         assert!(matches!(e, Error::RangeTooLong { .. }) && e.to_string().contains("trace"), "{to}: {e}");
     }
+    // A range shorter than the smallest normal number gives no direction to trace in: the path's
+    // parameter overflowed, and this regular start was told the curve "bifurcates or ends" there.
+    // A range of 1e-300 is one.
+    for to in [5e-324, -1e-310] {
+        let e = m.trace_curve(0.0, to, &g, &TraceConfig::default()).unwrap_err();
+        let text = e.to_string();
+        assert!(matches!(e, Error::InvalidArgument(_)) && text.contains("different from `from`"), "{to:e}: {text}");
+    }
+    assert!(m.trace_curve(0.0, 1e-300, &g, &TraceConfig::default()).is_ok());
     // A trace of few points stops there.
     let t = m.trace_curve(0.0, PI, &g, &TraceConfig::default().with_max_points(5)).unwrap();
     assert_eq!(t.points.len(), 5);

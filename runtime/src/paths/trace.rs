@@ -211,9 +211,9 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// Errors: `InvalidArgument` for invalid options (naming the field), a
 /// [`TraceConfig::max_points`] whose points would take more than
 /// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES) (with the numbers), or
-/// `to == from`; the errors of the first solve at `from`, but for an analog beyond `f64`'s range (the
-/// acceleration analogs by a length input in a mechanism below about `1e-154` in size), which
-/// the trace does not use; `Branch` where the continuation cannot proceed (the
+/// `to == from` (or within the smallest normal number of it); the errors of the first solve at
+/// `from`, but for an analog beyond `f64`'s range (the acceleration analogs by a length input in
+/// a mechanism below about `1e-154` in size), which the trace does not use; `Branch` where the continuation cannot proceed (the
 /// curve ends or jumps, or branches meet, where no step however short stays on it).
 pub fn trace_curve<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
@@ -247,9 +247,13 @@ pub fn trace_curve_of<K: Kernel>(
     cfg.validate()?;
     m.check_param_angles(&cfg)?;
     let path = Path::new(from.clone(), to);
-    if !(path.len > 0.0 && path.len.is_finite()) {
+    // A range shorter than the smallest normal number gives no direction either: the path's
+    // parameter, `sigma / len`, overflows, and a regular start was told the curve branches there.
+    if !(path.len >= f64::MIN_POSITIVE && path.len.is_finite()) {
         return Err(Error::InvalidArgument(
-            "trace_curve needs finite `from` and `to` with `to` different from `from`".into(),
+            "trace_curve needs finite `from` and `to` with `to` different from `from` (by at least 2.2e-308, the \
+             smallest normal number)"
+                .into(),
         ));
     }
     // A start at a limit position (where a sweep that stopped there says it is) has positions
