@@ -43,7 +43,7 @@ pub struct TraceConfig {
     pub ds: f64,
     /// Most points returned (default `100_000`; at most
     /// [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES), the most an analysis holds, and no more
-    /// than fit in [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), 1 GiB,
+    /// than fit in [`MAX_COLLECTED_BYTES`], 1 GiB,
     /// for the mechanism traced: about 33 million points of a four-bar, which
     /// [`trace_curve`] checks before its first step).
     pub max_points: usize,
@@ -210,7 +210,7 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 ///
 /// Errors: `InvalidArgument` for invalid options (naming the field), a
 /// [`TraceConfig::max_points`] whose points would take more than
-/// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES) (with the numbers), or
+/// [`MAX_COLLECTED_BYTES`] (with the numbers), or
 /// `to == from` (or within the smallest normal number of it); the errors of the first solve at
 /// `from`, but for an analog beyond `f64`'s range (the acceleration analogs by a length input in
 /// a mechanism below about `1e-154` in size), which the trace does not use; `Branch` where the continuation cannot proceed (the
@@ -526,7 +526,7 @@ pub fn trace_curve_of<K: Kernel>(
 }
 
 /// The most points of `m`'s trace that fit in
-/// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), the memory a collector
+/// [`MAX_COLLECTED_BYTES`], the memory a collector
 /// keeps at most: the largest [`TraceConfig::max_points`] [`trace_curve_of`] accepts for `m`
 /// (about 33 million points of a four-bar), for a caller that states the limit in its own terms
 /// (a command line's option) before it traces.
@@ -544,7 +544,7 @@ fn trace_point_bytes<K: Kernel>(m: &K) -> usize {
 }
 
 /// `Err(Error::InvalidArgument)` where `max_points` points of `m`'s trace would take more than
-/// [`MAX_COLLECTED_BYTES`](crate::paths::collected::MAX_COLLECTED_BYTES), with the numbers and
+/// [`MAX_COLLECTED_BYTES`], with the numbers and
 /// the most points that fit ([`max_trace_points`]). A trace keeps every point, and `max_points`
 /// may be as large as [`MAX_SAMPLES`](crate::analysis::MAX_SAMPLES): a four-bar's `10^8` points
 /// are 3.2 GB, a run-time model's several times that (each point's positions and inputs on the
