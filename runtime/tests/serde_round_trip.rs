@@ -415,6 +415,27 @@ fn vectors_of_edge_values_read_back_from_json_bit_for_bit() {
     assert!(cbor.x[0].is_nan() && cbor.x[1].to_bits() == 0x8000_0000_0000_0000 && cbor.y == many.y);
 }
 
+/// A vector of `f32` reads back from JSON with its non-finite components: serde_json wrote them
+/// `null`, which does not read back as an `f32` ("invalid type: null, expected f32"). They are
+/// written as an `f64`'s are (`"NaN"`, `"-NaN"`, `"inf"`), and read back with their signs; a
+/// finite `f32` is written as it is, its shortest text, and reads back bit for bit, in JSON and in
+/// CBOR (which holds the `f32` itself).
+#[test]
+fn vectors_of_f32_read_back_from_json_with_their_non_finite_components() {
+    let nan = f32::NAN;
+    for (x, y) in [(nan, 1.5f32), (-nan, f32::INFINITY), (f32::NEG_INFINITY, -0.0), (0.1, f32::MAX)] {
+        let v = Vec2::new(x, y);
+        let json = serde_json::to_string(&v).unwrap();
+        let back: Vec2<f32> = serde_json::from_str(&json).unwrap_or_else(|e| panic!("{json}: {e}"));
+        assert_eq!((back.x.to_bits(), back.y.to_bits()), (x.to_bits(), y.to_bits()), "{json}: {back:?}");
+        let mut bytes = Vec::new();
+        ciborium::into_writer(&v, &mut bytes).unwrap();
+        let cbor: Vec2<f32> = ciborium::from_reader(bytes.as_slice()).unwrap();
+        assert_eq!((cbor.x.to_bits(), cbor.y.to_bits()), (x.to_bits(), y.to_bits()), "{cbor:?}");
+    }
+    assert_eq!(serde_json::to_string(&Vec2::new(f32::NAN, 0.1f32)).unwrap(), r#"{"x":"NaN","y":0.1}"#);
+}
+
 /// `value` reads back from JSON and from CBOR with its numbers (`numbers` lists them) bit for
 /// bit. `name` says which row of the table failed.
 fn assert_numbers_round_trip<T: Serialize + DeserializeOwned>(name: &str, value: &T, numbers: fn(&T) -> Vec<f64>) {

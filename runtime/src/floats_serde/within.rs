@@ -7,7 +7,8 @@
 //! Serialize` alone, so `Vec2<T>` must serialize for every such `T` (`f64`, `[f64; N]`, a
 //! generated struct of the inputs, a user's own type) with nothing more known of it. A trait
 //! implemented for the element types would narrow that bound and break the generated code; the
-//! adapter needs no bound. `f32` and every other value pass unchanged.
+//! adapter needs no bound. An `f32` is written as it is where it is finite, and a non-finite one as
+//! `Float` writes it (so that JSON reads it back); every other value passes unchanged.
 //!
 //! The generated structs' own impls (kinloop's derives, `kinloop_codegen`'s `serde_derive`) hand
 //! their fields to [`Ser`] and [`De`], which `generated` re-exports as `FloatsSer` and
@@ -76,7 +77,6 @@ impl<S: Serializer> Serializer for Ser<S> {
         serialize_u32(v: u32);
         serialize_u64(v: u64);
         serialize_u128(v: u128);
-        serialize_f32(v: f32);
         serialize_char(v: char);
         serialize_str(v: &str);
         serialize_bytes(v: &[u8]);
@@ -88,6 +88,17 @@ impl<S: Serializer> Serializer for Ser<S> {
 
     fn serialize_f64(self, v: f64) -> Result<S::Ok, S::Error> {
         Float(v).serialize(self.0)
+    }
+
+    /// A finite `f32` as it is; a non-finite one as `Float` writes its `f64` (a string in a
+    /// self-describing format), which reads back: JSON writes a bare NaN or infinity `null`,
+    /// which does not read back as an `f32`.
+    fn serialize_f32(self, v: f32) -> Result<S::Ok, S::Error> {
+        if v.is_finite() || !self.0.is_human_readable() {
+            self.0.serialize_f32(v)
+        } else {
+            Float(f64::from(v)).serialize(self.0)
+        }
     }
 
     fn serialize_some<T: Serialize + ?Sized>(self, v: &T) -> Result<S::Ok, S::Error> {
@@ -251,7 +262,6 @@ impl<'de, D: Deserializer<'de>> Deserializer<'de> for De<D> {
         deserialize_u32();
         deserialize_u64();
         deserialize_u128();
-        deserialize_f32();
         deserialize_char();
         deserialize_str();
         deserialize_string();
@@ -277,6 +287,19 @@ impl<'de, D: Deserializer<'de>> Deserializer<'de> for De<D> {
 
     fn deserialize_f64<V: Visitor<'de>>(self, v: V) -> Result<V::Value, D::Error> {
         v.visit_f64(<Float as de::Deserialize>::deserialize(self.0)?.0)
+    }
+
+    /// In a self-describing format, an `f32` read as `Float` reads an `f64` (a number, or the
+    /// string of a non-finite one), rounded to `f32` as the format rounds a number read as one; a
+    /// NaN keeps its sign (and the payload an `f32` has). A binary format holds the `f32` itself,
+    /// and is asked for it.
+    #[allow(clippy::cast_possible_truncation)] // the rounding to `f32` is the point
+    fn deserialize_f32<V: Visitor<'de>>(self, v: V) -> Result<V::Value, D::Error> {
+        if self.0.is_human_readable() {
+            v.visit_f32(<Float as de::Deserialize>::deserialize(self.0)?.0 as f32)
+        } else {
+            self.0.deserialize_f32(v)
+        }
     }
 
     fn is_human_readable(&self) -> bool {
