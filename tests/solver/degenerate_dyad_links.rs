@@ -510,7 +510,7 @@ fn regular_mechanisms_are_solved_at_every_size() {
 
 /// The fixtures' class IV group at size `k`: its lengths times `k`, its ternary links' angles
 /// as they are.
-fn class_four_at(k: f64) -> kinloop_fixtures::ClassFour {
+pub(crate) fn class_four_at(k: f64) -> kinloop_fixtures::ClassFour {
     let d = kinloop_fixtures::ClassFour::default();
     kinloop_fixtures::ClassFour {
         oa: d.oa * k,

@@ -123,20 +123,8 @@ fn tiny_lengths_are_not_zero() {
     let four_bar = |k: f64| ZeroFourBar { a: k, b: 3.0 * k, c: 2.5 * k, d: 3.2 * k };
     let four_bar_newton = |k: f64| ZeroFourBarNewton { a: k, b: 3.0 * k, c: 2.5 * k, d: 3.2 * k };
     let one = four_bar(1.0).position_flat(&[phi], &guess, &cfg).unwrap().0;
-    let d = ClassFour::default();
-    let class_four = |k: f64| ClassFour {
-        oa: d.oa * k,
-        xb: d.xb * k,
-        yb: d.yb * k,
-        ac: d.ac * k,
-        ae: d.ae * k,
-        bd: d.bd * k,
-        bf: d.bf * k,
-        cd: d.cd * k,
-        ef: d.ef * k,
-        ..d
-    };
-    let g4 = d.guess_flat(&[phi]);
+    let class_four = crate::degenerate_dyad_links::class_four_at;
+    let g4 = ClassFour::default().guess_flat(&[phi]);
     let one4 = class_four(1.0).position_flat(&[phi], &g4, &cfg).unwrap().0;
     for k in [1e-150, 1e-200] {
         for q in [
