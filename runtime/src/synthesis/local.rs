@@ -191,9 +191,10 @@ impl<K: SensKernel> ProblemOf<K> {
         let root_targets = (self.targets() as f64).sqrt();
         let row_weight: Vec<f64> =
             self.channels.iter().flat_map(|&(c, w)| std::iter::repeat_n(w, channel_width(c))).collect();
+        // The resolution (a pass over the Jacobian) only where the tolerance alone is not met.
         let met = |f: f64, e: &Eval<Q<K>>, z: &[f64]| {
-            let rounding = ROUNDING * f64::EPSILON * self.resolution(e, z, &row_weight);
-            f / root_targets <= (cfg.tol * self.scale).max(rounding)
+            let rms = f / root_targets;
+            rms <= cfg.tol * self.scale || rms <= ROUNDING * f64::EPSILON * self.resolution(e, z, &row_weight)
         };
         let stop = loop {
             if met(f, &e, &z) {
