@@ -138,3 +138,50 @@ fn a_motion_of_other_output_columns_is_refused_naming_them() {
     };
     assert!(e.contains("inputs [\"theta\"]"), "{e}");
 }
+
+/// The opening tag of a page's picture: its size, scale and origin.
+fn picture_tag(page: &str) -> &str {
+    let start = page.find(r#"<svg xmlns="http://www.w3.org/2000/svg" id="kl-drawing""#).expect("the picture");
+    &page[start..start + page[start..].find('>').unwrap()]
+}
+
+/// A page's picture is framed to what it draws: the mechanism and its traced paths. The
+/// drawings' labels and the strip under an SVG drawing (scale bar, readout of the inputs,
+/// notes) are not drawn over the page's picture (the page writes its readouts, events and
+/// notes as text beside and under it), and left the picture a blank band under the mechanism
+/// as high as that strip, and as wide and offset as a long label or readout made the drawing.
+#[test]
+fn a_pages_picture_is_framed_by_what_it_draws() {
+    let (m, mo) = motion();
+    let bare = Drawing::new()
+        .with_annotate(kinloop_viz::draw::Annotate::none())
+        .pivot(Pt::fixed(0.0, 0.0))
+        .pivot(Pt::fixed(m.d, 0.0))
+        .link([Pt::fixed(0.0, 0.0), Pt::point("b"), Pt::point("c"), Pt::fixed(m.d, 0.0)])
+        .trace("p");
+    let mut annotated = bare.clone();
+    annotated.annotate = kinloop_viz::draw::Annotate::default();
+    let annotated = annotated
+        .label(Pt::point("c"), "the rocker's pin, where the coupler meets it")
+        .note("a note long enough to take two lines of the strip under the drawing, so that its height shows");
+    // The SVG drawings do hold the annotations: the annotated one is larger.
+    let size = |svg: &str| {
+        let doc = roxmltree::Document::parse(svg).unwrap();
+        let attr = |a: &str| doc.root_element().attribute(a).unwrap().parse::<f64>().unwrap();
+        [attr("width"), attr("height")]
+    };
+    let bare_svg = size(&bare.svg(&mo, 0).unwrap());
+    let annotated_svg = size(&annotated.svg(&mo, 0).unwrap());
+    assert!(annotated_svg[1] > bare_svg[1] + 40.0, "{annotated_svg:?} {bare_svg:?}");
+    let config = HtmlConfig::new("framed");
+    let bare_page = html(&m, &bare, &mo, &config).unwrap();
+    let annotated_page = html(&m, &annotated, &mo, &config).unwrap();
+    // The same picture, to the digit: the page draws the same items and paths of both.
+    assert_eq!(picture_tag(&annotated_page), picture_tag(&bare_page));
+    // The bare drawing has no strip (no annotation, event or note): its SVG is the mechanism
+    // and its paths alone, which is what the page shows.
+    let tag = picture_tag(&annotated_page);
+    let field = |a: &str| tag.split(&format!(r#" {a}=""#)).nth(1).unwrap().split('"').next().unwrap().to_string();
+    assert_eq!([field("width"), field("height")], bare_svg.map(|v| v.to_string()), "{tag}");
+    assert!(annotated_page.contains("<p class=\"kl-drawing-note\">note: a note long enough"));
+}

@@ -394,7 +394,7 @@ where
     // The picture fitted to the targets too (drawn as joints there for the fit only).
     let mut fit = drawing.clone();
     fit.items.extend(targets.iter().map(|t| Item::Joint { at: Pt::Fixed(*t) }));
-    let view = fit.view(&motion)?;
+    let view = fit.page_view(&motion)?;
     html_marked(&kinloop_runtime::Compiled(&m), &drawing, &motion, page, targets, Some(view))
 }
 

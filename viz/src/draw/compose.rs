@@ -516,6 +516,15 @@ impl Drawing {
         Ok(self.layers(motion)?.scene.view)
     }
 
+    /// The map from mechanism units to pixels of an interactive page's picture of `motion`: as
+    /// [`Drawing::view`], but cropped to the items and traced paths alone, without the joint
+    /// labels and the strip of annotations under the picture (scale bar, readout, events'
+    /// labels, notes), which the page does not draw over its picture: it writes the readouts,
+    /// the events and the notes as text of its own beside and under it.
+    pub(crate) fn page_view(&self, motion: &Motion) -> Result<View, DrawError> {
+        Ok(Scene::unlabelled(self, motion)?.view)
+    }
+
     /// The mechanism at one pose (`pose` indexes the samples, then the events) as a static SVG,
     /// with the traced paths and the events. For print, slides and PNG frames.
     pub fn svg(&self, motion: &Motion, pose: usize) -> Result<String, DrawError> {

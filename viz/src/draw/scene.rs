@@ -448,7 +448,19 @@ fn label_points(d: &Drawing) -> Vec<(&Pt, String)> {
 }
 
 impl Scene {
+    /// The drawing over the motion, fitted and cropped to its items, traced paths and labels.
     pub fn new(d: &Drawing, motion: &Motion) -> Result<Scene, DrawError> {
+        Scene::build(d, motion, true)
+    }
+
+    /// The drawing over the motion without its labels (their points still checked), fitted and
+    /// cropped to its items and traced paths alone: the picture of an interactive page, which
+    /// writes no label over the mechanism.
+    pub fn unlabelled(d: &Drawing, motion: &Motion) -> Result<Scene, DrawError> {
+        Scene::build(d, motion, false)
+    }
+
+    fn build(d: &Drawing, motion: &Motion, labelled_too: bool) -> Result<Scene, DrawError> {
         d.canvas.check()?;
         d.style.check()?;
         if motion.poses.is_empty() {
@@ -473,11 +485,15 @@ impl Scene {
             shape.extent(|p| pts.push(p));
         }
         pts.extend(traced.iter().flatten());
-        pts.extend(labelled.iter().flatten());
+        if labelled_too {
+            pts.extend(labelled.iter().flatten());
+        }
         let fitted = d.canvas.view(&pts, RESERVE)?;
         let mut scene = Scene::at(fitted, &world, &traced, &labelled, Vec::new(), motion.poses.len());
         near(d, &scene.frames, &scene.traced)?;
-        scene.labels = scene.place_labels(label_pts.into_iter().map(|(_, t)| t).collect(), &d.style);
+        if labelled_too {
+            scene.labels = scene.place_labels(label_pts.into_iter().map(|(_, t)| t).collect(), &d.style);
+        }
         if d.canvas.window.is_none() {
             // Cropped to everything drawn over the whole motion, plus the margin.
             let [x0, y0, x1, y1] = scene.ink(&d.style);

@@ -50,7 +50,8 @@ impl Slot {
 
 /// The drawing at the page's frames and at the motion's events.
 pub(crate) struct Frames {
-    /// Mechanism units to pixels (the drawings' own view of the motion).
+    /// Mechanism units to pixels (the drawings' fit of the motion, cropped to what the page
+    /// draws: [`Drawing::page_view`]).
     pub view: View,
     /// The items, in drawing order.
     pub slots: Vec<Slot>,
@@ -210,8 +211,9 @@ impl Frames {
         view: Option<View>,
     ) -> Result<Frames, HtmlError> {
         // The drawings' own checks (names, shapes of poses, finite points, style, canvas) and
-        // their fit of the picture to every pose.
-        let fitted = d.view(motion)?;
+        // their fit of the picture to every pose, without what the page does not draw over it
+        // (labels, the strip of annotations under an SVG drawing).
+        let fitted = d.page_view(motion)?;
         let view = view.unwrap_or(fitted);
         let e = Eval { motion, view, spans: guide_spans(d, motion)? };
         let mut slots = Vec::with_capacity(d.items.len());

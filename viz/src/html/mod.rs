@@ -44,10 +44,13 @@
 //! written above it (`+999.999999996`). The drawing's
 //! scale (`data-scale`, pixels per unit) and the pixel of the origin (`data-origin`) are
 //! attributes of its `<svg id="kl-drawing">`, so coordinates read from the page map back to
-//! the mechanism's units. At most [`HtmlConfig::max_frames`] poses are written (721 by
-//! default, about 30 to 60 kB for the gallery's mechanisms). The traced paths go through
-//! every pose, but a segment already drawn (between the same points, to a tenth of a pixel)
-//! is written once: a sweep of a thousand turns does not write its curve a thousand times.
+//! the mechanism's units. The picture is framed to the mechanism and its traced paths over
+//! the motion (the scale of the SVG drawings), without their joint labels and strip of
+//! annotations: the page writes its readouts, events and notes beside and under it. At most
+//! [`HtmlConfig::max_frames`] poses are written (721 by default, about 30 to 60 kB for the
+//! gallery's mechanisms). The traced paths go through every pose, but a segment already drawn
+//! (between the same points, to a tenth of a pixel) is written once: a sweep of a thousand
+//! turns does not write its curve a thousand times.
 //!
 //! ```
 //! use kinloop_viz::draw::{Drawing, Motion, Pt};
