@@ -624,3 +624,42 @@ fn long_tick_labels_neither_overlap_nor_leave_the_picture() {
         }
     }
 }
+
+/// A sample between gaps (the samples before and after it failed) is shown, and so is a run
+/// of samples that all fall on one pixel: each was written as a path of no length (`M x,y`
+/// alone, or to a point within half a pixel), which no renderer strokes, and the figure showed
+/// no data where there was some. Checked on the rendered pixels, at every finite sample.
+#[test]
+fn a_lone_sample_between_gaps_is_drawn() {
+    use resvg::{tiny_skia, usvg};
+    let nan = f64::NAN;
+    // Away from the plot area's frame, which a sample on it would be hidden under.
+    let lone = vec![(1.0, 1.0), (2.0, nan), (3.0, 2.0), (4.0, nan), (5.0, 1.5), (5.0 + 1e-9, 1.5), (6.0, nan)];
+    let solid = vec![(0.0, 0.0), (7.0, 3.0)];
+    let (x, y) = (Axis::new("x", mm()), Axis::new("y", mm()));
+    let series = [Series::new("lone", mm(), lone.clone()), Series::new("line", mm(), solid)];
+    for svg in [line_chart_svg("", &x, &y, &series).unwrap(), xy_chart_svg("", &x, &y, &series, &[]).unwrap()] {
+        // Where the samples are: the ends of the solid curve (the last one drawn) fix the map
+        // from values to pixels.
+        let line = parse(&svg).curves[0].last().unwrap().clone();
+        let (a, b) = (line[0], line[line.len() - 1]);
+        let px = |(vx, vy): (f64, f64)| (a.0 + (b.0 - a.0) * vx / 7.0, a.1 + (b.1 - a.1) * vy / 3.0);
+        let doc = roxmltree::Document::parse(&svg).unwrap();
+        let curve = doc.descendants().find(|n| n.attribute("data-label") == Some("lone")).unwrap();
+        let stroke = curve.attribute("stroke").unwrap();
+        let hex = |k: usize| u8::from_str_radix(&stroke[1 + 2 * k..3 + 2 * k], 16).unwrap();
+        let want = [hex(0), hex(1), hex(2)];
+        let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).unwrap();
+        let size = tree.size().to_int_size();
+        let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height()).unwrap();
+        resvg::render(&tree, tiny_skia::Transform::identity(), &mut pixmap.as_mut());
+        for s in lone.iter().filter(|s| s.1.is_finite()) {
+            // The pixel under the sample has the curve's colour (within anti-aliasing), not the
+            // white paper or a grey grid line.
+            let (i, j) = px(*s);
+            let c = pixmap.pixel(i as u32, j as u32).unwrap();
+            let at = [c.red(), c.green(), c.blue()];
+            assert!(at.iter().zip(&want).all(|(a, b)| a.abs_diff(*b) <= 40), "sample {s:?}: {at:?}, curve {want:?}");
+        }
+    }
+}

@@ -120,7 +120,10 @@ impl Svg {
 
     /// A polyline through pixel points, broken at non-finite points and thinned: a point closer
     /// than half a pixel to the last drawn one is skipped (the last point of a run is kept);
-    /// stroked in a colour and a dash array (empty: solid).
+    /// stroked in a colour and a dash array (empty: solid). A run that draws no stroke of its
+    /// own, a lone sample between gaps (failed samples) or samples all within half a pixel of
+    /// the first, is a dot of the curve's colour: a path of one point, or of no length, is not
+    /// stroked, and that sample would not be shown at all.
     pub fn curve(
         &mut self,
         label: &str,
@@ -131,29 +134,40 @@ impl Svg {
         let mut d = String::new();
         let mut last: Option<(f64, f64)> = None;
         let mut pending: Option<(f64, f64)> = None;
+        // The first point of the run being written, and whether the run has drawn a stroke.
+        let mut first = (0.0, 0.0);
+        let mut stroked = false;
+        let mut dots = Vec::new();
         for (x, y) in points {
             if !(x.is_finite() && y.is_finite()) {
                 if let Some(p) = pending.take() {
                     let _ = write!(d, " L{},{}", num(p.0), num(p.1));
                 }
-                last = None;
+                if last.take().is_some() && !stroked {
+                    dots.push(first);
+                }
                 continue;
             }
             match last {
                 None => {
                     let _ = write!(d, " M{},{}", num(x), num(y));
                     last = Some((x, y));
+                    (first, stroked) = ((x, y), false);
                 }
                 Some((lx, ly)) if (x - lx).hypot(y - ly) < THIN_PX => pending = Some((x, y)),
                 Some(_) => {
                     let _ = write!(d, " L{},{}", num(x), num(y));
                     last = Some((x, y));
                     pending = None;
+                    stroked = true;
                 }
             }
         }
         if let Some(p) = pending {
             let _ = write!(d, " L{},{}", num(p.0), num(p.1));
+        }
+        if last.is_some() && !stroked {
+            dots.push(first);
         }
         let _ = write!(
             self.out,
@@ -162,6 +176,16 @@ impl Svg {
             d.trim_start(),
             dash_attribute(dash)
         );
+        // Twice the curve's width across: a sample, seen as one.
+        for (x, y) in dots {
+            let _ = write!(
+                self.out,
+                r#"<circle class="curve-dot" data-label="{}" cx="{}" cy="{}" r="2" fill="{stroke}" clip-path="url(#{clip})"/>"#,
+                escape(label),
+                num(x),
+                num(y)
+            );
+        }
     }
 
     /// A clipping rectangle named `id`.
