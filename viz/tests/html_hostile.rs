@@ -185,3 +185,39 @@ fn a_pages_picture_is_framed_by_what_it_draws() {
     assert_eq!([field("width"), field("height")], bare_svg.map(|v| v.to_string()), "{tag}");
     assert!(annotated_page.contains("<p class=\"kl-drawing-note\">note: a note long enough"));
 }
+
+/// The page's Play button. Disabled where there is nothing to play: a page of one pose, or a
+/// grid whose first input (the one Play moves) has one value; pressed, it did nothing.
+fn play_disabled(page: &str) -> bool {
+    let at = page.find(r#"<button id="kl-play""#).expect("the button");
+    let tag = &page[at..at + page[at..].find('>').unwrap()];
+    tag.contains(" disabled")
+}
+
+/// A page with nothing to play offers no Play that does nothing, and says "1 pose", not "1
+/// poses"; a page with something to play keeps its button.
+#[test]
+fn a_page_with_nothing_to_play_disables_its_play_button() {
+    use kinloop::Mechanism;
+    use kinloop_fixtures::FiveBar;
+    use kinloop_viz::draw::{Draw, GridMotion, html_grid};
+    let m = FourBar::default();
+    let d = Drawing::new().link([Pt::fixed(0.0, 0.0), Pt::point("b"), Pt::point("c")]);
+    let one = Motion::record(&m, m.sweep(0.5, 0.5, 1, &m.guess(0.5)).unwrap()).unwrap();
+    let page = html(&m, &d, &one, &HtmlConfig::new("one pose")).unwrap();
+    assert!(play_disabled(&page));
+    assert!(page.contains("1 pose of a branch-safe sweep"), "{page}");
+    let (m, two) = motion();
+    let page = html(&m, &d, &two, &HtmlConfig::new("poses")).unwrap();
+    assert!(!play_disabled(&page));
+    assert!(page.contains("13 poses of a branch-safe sweep"));
+    // A grid: Play moves the first input.
+    let five = FiveBar::default();
+    let drawing = five.drawing().into_drawing();
+    for (counts, to, disabled) in [([1, 3], [0.0, 0.2], true), ([3, 1], [0.2, 0.0], false)] {
+        let from = [0.0, 0.0];
+        let grid = GridMotion::record(&five, from, to, counts, five.guess_flat(&from)).unwrap();
+        let page = html_grid(&five, &drawing, &grid, &HtmlConfig::new("grid")).unwrap();
+        assert_eq!(play_disabled(&page), disabled, "{counts:?}");
+    }
+}

@@ -149,10 +149,18 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
         css::CSS,
         p.figure
     );
+    // Play moves through the frames (on a grid, along the first input's values): where there
+    // is one, it has nothing to play, and the button is disabled rather than doing nothing.
+    let playable = match &p.grid {
+        Some(g) => g.counts.first().is_some_and(|&c| c > 1),
+        None => n > 1,
+    };
+    let play = format!(
+        "<button id=\"kl-play\" type=\"button\" aria-pressed=\"false\"{}>Play</button>",
+        if playable { "" } else { " disabled" }
+    );
     if let Some(g) = &p.grid {
-        s.push_str(
-            "<div class=\"kl-controls kl-grid\"><button id=\"kl-play\" type=\"button\" aria-pressed=\"false\">Play</button><div class=\"kl-sliders\">",
-        );
+        let _ = write!(s, "<div class=\"kl-controls kl-grid\">{play}<div class=\"kl-sliders\">");
         for (k, (name, count)) in g.inputs.iter().zip(&g.counts).enumerate() {
             let name = escape(name);
             let _ = write!(
@@ -165,7 +173,7 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
     } else {
         let _ = write!(
             s,
-            "<div class=\"kl-controls\"><button id=\"kl-play\" type=\"button\" aria-pressed=\"false\">Play</button><div class=\"kl-track\"><input id=\"kl-slider\" type=\"range\" min=\"0\" max=\"{}\" step=\"1\" value=\"0\" aria-label=\"pose along the motion\"><div class=\"kl-marks\">",
+            "<div class=\"kl-controls\">{play}<div class=\"kl-track\"><input id=\"kl-slider\" type=\"range\" min=\"0\" max=\"{}\" step=\"1\" value=\"0\" aria-label=\"pose along the motion\"><div class=\"kl-marks\">",
             n - 1
         );
     }
@@ -218,7 +226,8 @@ pub(crate) fn document(p: &Parts) -> Result<String, HtmlError> {
             g.counts.iter().map(usize::to_string).collect::<Vec<_>>().join(" x "),
         ),
         None => {
-            format!("{n} poses of a branch-safe sweep, computed by kinloop; drag the slider or use the arrow keys.")
+            let poses = if n == 1 { "pose" } else { "poses" };
+            format!("{n} {poses} of a branch-safe sweep, computed by kinloop; drag the slider or use the arrow keys.")
         }
     };
     let _ = write!(
