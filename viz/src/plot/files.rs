@@ -35,7 +35,10 @@ pub fn figure_dir(name: &str) -> Result<PathBuf, PlotError> {
 
 /// At most `max` points of a curve, equally strided, keeping the first and the last (for
 /// smaller files; the charts already skip points closer than half a pixel). A curve keeps its
-/// ends: a `max` below 2 counts as 2.
+/// ends: a `max` below 2 counts as 2. A gap (a non-finite point: a sample that failed) is
+/// never bridged: where the points skipped between two kept finite ones hold one, the first
+/// such is kept too, and the stride is widened until the points kept, gaps with them, are at
+/// most `max` (at most 3 where `max` is 2: the ends and a gap between them).
 ///
 /// ```
 /// use kinloop_viz::plot::decimate;
@@ -44,6 +47,11 @@ pub fn figure_dir(name: &str) -> Result<PathBuf, PlotError> {
 /// assert_eq!(d.len(), 11);
 /// assert_eq!((d[0], d[10]), (pts[0], pts[100]));
 /// assert_eq!(decimate(&pts, 0), [pts[0], pts[100]]);
+/// // A failed sample between two kept points stays a gap in the curve.
+/// let mut gap = pts.clone();
+/// gap[55] = (55.0, f64::NAN);
+/// let d = decimate(&gap, 11);
+/// assert!(d.len() <= 11 && d.iter().any(|p| p.1.is_nan()));
 /// ```
 pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
     // Every point was kept for a `max` of 0 or 1, against "at most `max`".
@@ -51,12 +59,40 @@ pub fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
     if points.len() <= max {
         return points.to_vec();
     }
-    let stride = (points.len() - 1).div_ceil(max - 1);
-    let mut out: Vec<(f64, f64)> = points.iter().step_by(stride).copied().collect();
+    let last = points.len() - 1;
+    let mut stride = last.div_ceil(max - 1);
+    loop {
+        let out = strided(points, stride);
+        // The widest stride keeps the two ends and at most one gap between them.
+        if out.len() <= max || stride >= last {
+            return out;
+        }
+        // Each gap kept takes the place of a strided point: wider steps, about an eighth at a
+        // time, until they fit.
+        stride += stride.div_ceil(8);
+    }
+}
+
+/// Every `stride`-th point and the last, with the first non-finite point skipped between two
+/// kept finite ones (a gap the curve must keep).
+fn strided(points: &[(f64, f64)], stride: usize) -> Vec<(f64, f64)> {
+    let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+    let last = points.len() - 1;
     // By index, not by value: a last point that is not finite (a sweep that stopped) never
     // equals itself, and would be written twice, one point over `max`.
-    if !(points.len() - 1).is_multiple_of(stride) {
-        out.push(points[points.len() - 1]);
+    let mut kept: Vec<usize> = (0..=last).step_by(stride).collect();
+    if !last.is_multiple_of(stride) {
+        kept.push(last);
+    }
+    let mut out = Vec::with_capacity(kept.len() + 1);
+    for (k, &i) in kept.iter().enumerate() {
+        if k > 0 {
+            let before = kept[k - 1];
+            if finite(&points[before]) && finite(&points[i]) {
+                out.extend(points[before + 1..i].iter().find(|p| !finite(p)));
+            }
+        }
+        out.push(points[i]);
     }
     out
 }
@@ -80,5 +116,34 @@ mod tests {
         let d = decimate(&pts, 4);
         assert_eq!(d.len(), 4, "{d:?}");
         assert!(d[3].0.is_nan());
+    }
+
+    /// A failed sample among those skipped stays a gap: the curve was drawn straight across it,
+    /// as if the sweep had solved there. Every pair of consecutive kept points that are finite
+    /// has no non-finite point of the curve between them, and at most `max` points are kept.
+    #[test]
+    fn a_gap_between_kept_points_is_kept() {
+        let nan = f64::NAN;
+        let curve = |gaps: &[usize], n: usize| -> Vec<(f64, f64)> {
+            (0..n).map(|i| (i as f64, if gaps.contains(&i) { nan } else { (i as f64).sin() })).collect()
+        };
+        for (gaps, n, max) in [
+            (&[55][..], 101, 11),
+            (&[3, 4, 5], 101, 11),
+            (&[1, 13, 27, 41, 58, 77, 93], 101, 6),
+            (&[50], 101, 2),
+            (&[50], 101, 3),
+            (&[10, 11, 12, 700, 701, 9000], 10_000, 500),
+        ] {
+            let pts = curve(gaps, n);
+            let d = decimate(&pts, max);
+            assert!(d.len() <= max.max(3), "{gaps:?} {max}: {} points", d.len());
+            assert_eq!((d[0].0, d[d.len() - 1].0), (0.0, (n - 1) as f64), "{gaps:?} {max}: the ends");
+            for w in d.windows(2) {
+                let ([a, b], finite) = ([w[0].0, w[1].0], w[0].1.is_finite() && w[1].1.is_finite());
+                let bridged = gaps.iter().any(|&g| a < g as f64 && (g as f64) < b);
+                assert!(!(finite && bridged), "{gaps:?} {max}: {a} to {b} bridges a gap");
+            }
+        }
     }
 }
