@@ -1,6 +1,7 @@
 //! Playing a page in a real browser, on a clock the test sets: the page's script is given a
 //! `performance.now` and a `requestAnimationFrame` that stand still between calls, so the
 //! frames it reaches are the same on every run (no wall-clock time is measured).
+//! Also a page laid out on a narrow screen (no part of it wider than the screen).
 //!
 //! Without Chromium the test prints a note and passes locally; in CI (`CI` set) it fails.
 
@@ -86,4 +87,46 @@ fn a_page_plays_from_a_frame_stamped_before_play_started() {
             "back and forth: {back_and_forth}"
         );
     }
+}
+
+/// The value of attribute `name` of the page's root element, as the browser left it.
+fn root_attr(dom: &str, name: &str) -> Option<f64> {
+    dom.split(&format!(" {name}=\"")).nth(1)?.split('"').next()?.parse().ok()
+}
+
+/// On a screen narrower than a chart (a phone's, 390 pixels), the page does not scroll
+/// sideways: the charts shrink with the picture. A chart kept its 380 pixels beside the page's
+/// margins and ran off the screen, its last tick labels cut and the whole page scrolling.
+/// Headless Chromium opens no window narrower than 500 pixels: the page's body is given the
+/// phone's width instead.
+#[test]
+fn a_page_fits_a_narrow_screen() {
+    let m = FourBar::default();
+    let motion = Motion::record(&m, m.sweep(0.0, TAU, 37, &m.guess(0.0)).unwrap()).unwrap();
+    let drawing = m.drawing().into_drawing();
+    let Some(bin) = chromium() else { return };
+    let config = HtmlConfig::new("narrow").show(FourBar::COL.gamma).with_autoplay(false);
+    let page = html(&m, &drawing, &motion, &config).unwrap();
+    let page = page.replacen("</head>", "<style>body{width:390px}</style></head>", 1);
+    // Measured once the page is laid out: how wide its content is, how wide the body, where
+    // each chart's right edge lies.
+    let measure = "<script>window.addEventListener('load', function () {
+  var d = document.documentElement, b = document.body;
+  d.setAttribute('data-scroll-width', String(b.scrollWidth));
+  d.setAttribute('data-body-width', String(b.clientWidth));
+  var right = 0;
+  document.querySelectorAll('svg.kl-chart').forEach(function (c) {
+    right = Math.max(right, c.getBoundingClientRect().right);
+  });
+  d.setAttribute('data-chart-right', String(right));
+});</script></body>";
+    let page = page.replacen("</body>", measure, 1);
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join("narrow.html");
+    std::fs::write(&path, &page).unwrap();
+    let dom = run_chromium(&bin, &url(&path, ""), &["--virtual-time-budget=1000", "--dump-dom"]);
+    let [scroll, body, right] =
+        ["data-scroll-width", "data-body-width", "data-chart-right"].map(|a| root_attr(&dom, a).expect(a));
+    assert_eq!(body, 390.0, "the body is the phone's width");
+    assert!(scroll <= body, "the page's content is {scroll} px wide in a body of {body} px");
+    assert!(right > 0.0 && right <= body, "a chart ends at {right} px in a body of {body} px");
 }

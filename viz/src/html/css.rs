@@ -1,7 +1,9 @@
 //! The page's style sheet.
 
 /// Layout: the picture with its controls on the left, readouts and charts on the right
-/// (below on a narrow screen); event marks on the slider's track.
+/// (below on a narrow screen); event marks on the slider's track. The picture and the charts
+/// shrink to a screen narrower than they are (their drawing scales with its `viewBox`), so
+/// that the page never scrolls sideways.
 pub(crate) const CSS: &str = r#"
 body{margin:0;font-family:system-ui,sans-serif;color:#1c2833;background:#f7f8fa}
 .kl{max-width:1280px;margin:0 auto;padding:12px 18px}
@@ -27,7 +29,7 @@ body{margin:0;font-family:system-ui,sans-serif;color:#1c2833;background:#f7f8fa}
 .kl-value{text-align:right;min-width:6em;font-family:ui-monospace,monospace}
 .kl-unit{color:#5d6d7e}
 .kl-charts{display:flex;flex-direction:column;gap:6px}
-.kl-chart{background:white;border:1px solid #d5dbe1;border-radius:4px}
+.kl-chart{max-width:100%;height:auto;background:white;border:1px solid #d5dbe1;border-radius:4px}
 .kl-note{font-size:.8rem;color:#5d6d7e}
 .kl-sliders{flex:1;display:flex;flex-direction:column;gap:4px;min-width:200px}
 .kl-axis{display:flex;align-items:center;gap:8px;font-size:.9rem}
