@@ -6,7 +6,7 @@
 use crate::cam::{self, FollowerArgs, Found};
 use crate::cam_drawn;
 use crate::exit::usage;
-use crate::solve::{Notes, degrees, in_units, model_inputs, named, parse_inputs, text_in_units};
+use crate::solve::{Notes, degrees, in_units, led_by, model_inputs, named, parse_inputs, text_in_units};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, samples};
 use kinloop_model::{Count, Model};
@@ -133,7 +133,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         // So is the start's (a loop whose lengths are all zero), said where it was solved in the
         // units given.
         Err(DrawError::Sweep(e @ Error::InvalidArgument(_))) => {
-            return Err(usage(format!("{name}: {}", text_in_units(model, e, &from, req.deg))));
+            return Err(usage(led_by(&name, &name, &text_in_units(model, e, &from, req.deg))));
         }
         Err(DrawError::Sweep(e @ Error::RangeTooLong { .. })) => {
             return Err(range_too_long(&name, &e, req.from, req.to, req.deg).unwrap_or_else(|| failed(&e)));
@@ -306,7 +306,7 @@ fn grid(model: &mut Model, req: &Request, format: Format) -> Result<(), Failed> 
         // So is the first cell's invalid argument (a loop whose lengths are all zero), said
         // where it was solved in the units given.
         DrawError::Sweep(e @ Error::InvalidArgument(_)) => {
-            usage(format!("{name}: {}", DrawError::Sweep(text_in_units(model, e, &from, req.deg))))
+            usage(led_by(&name, &name, &DrawError::Sweep(text_in_units(model, e, &from, req.deg))))
         }
         e @ DrawError::GridRange { .. } => {
             let is_angle = |i| kinds.get(i) == Some(&QuantityKind::Angle);

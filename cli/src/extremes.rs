@@ -6,7 +6,7 @@
 
 use crate::csv_rows::unsigned_zero;
 use crate::output::unit_suffix;
-use crate::solve::{degrees, in_units, model_inputs, start_failed, text_in_units};
+use crate::solve::{degrees, in_units, led_by, model_inputs, start_failed, text_in_units};
 use crate::sweep::range_too_long;
 use crate::{Failed, exit, progress, samples};
 use kinloop_model::Model;
@@ -121,7 +121,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             if let Error::InvalidArgument(_) = e {
                 // The start's (a loop whose lengths are all zero) where it was solved, in the
                 // units given.
-                return Err(exit::usage(format!("{name}: {}", text_in_units(model, e, &from, req.deg))));
+                return Err(exit::usage(led_by(&name, &name, &text_in_units(model, e, &from, req.deg))));
             }
             return Err(start_failed(model, &name, e, (&from, Some(&to)), req.deg));
         }

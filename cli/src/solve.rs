@@ -97,7 +97,12 @@ fn explain(
         return (format!("{whence}: {e}"), None);
     }
     let e = model.explain(x, &guess, &NewtonConfig::default(), e);
-    (named(whence, &in_units(text_in_units(model, e.clone(), x, deg), kinds, deg)), Some(e))
+    let said = in_units(text_in_units(model, e.clone(), x, deg), kinds, deg);
+    let said = match said.location() {
+        Some(_) => said.to_string(),
+        None => led_by(whence, model.name(), &said),
+    };
+    (said, Some(e))
 }
 
 /// `e`, an error of a solve of `model` at the inputs `x` (in the model's units), with the
@@ -159,11 +164,26 @@ pub fn located_in_units(model: &Model, text: &str, x: &[f64], deg: bool) -> Stri
 }
 
 /// The error `e` of the model `name` as a line says it: the error alone where its location
-/// names the mechanism and the inputs (``in `FourBar` at phi = 30``), `name: e` otherwise.
+/// names the mechanism and the inputs (``in `FourBar` at phi = 30``), `name: e` otherwise
+/// ([`led_by`]).
 pub fn named(name: &str, e: &Error) -> String {
     match e.location() {
         Some(_) => e.to_string(),
-        None => format!("{name}: {e}"),
+        None => led_by(name, name, e),
+    }
+}
+
+/// `what` (an error of the mechanism `mechanism`) led by `whence` (the mechanism, and the inputs
+/// as given: `FourBar at 30`), unless its text names the mechanism's location itself (``in
+/// `FourBar` at phi = 30``), as the runtime writes it into the text of an error that carries no
+/// location (a loop whose lengths are all zero): led anyway, the line named the mechanism twice
+/// and its inputs twice ("FourBar at 30: ... in `FourBar` at phi = 30").
+pub fn led_by(whence: &str, mechanism: &str, what: &impl std::fmt::Display) -> String {
+    let text = what.to_string();
+    let location = Location { mechanism: Cow::Owned(mechanism.to_owned()), inputs: Vec::new(), block: None };
+    match text.contains(&location.to_string()) {
+        true => text,
+        false => format!("{whence}: {text}"),
     }
 }
 

@@ -4,7 +4,7 @@
 //! listed on standard error, or written to `--events`.
 
 use crate::csv_rows::CsvRows;
-use crate::solve::{degrees, located_in_units, model_inputs, solve_failed, start_failed, units};
+use crate::solve::{degrees, led_by, located_in_units, model_inputs, solve_failed, start_failed, units};
 use crate::sweep::{events_columns, range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
@@ -86,7 +86,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
         // The start's invalid argument (a loop whose lengths are all zero) where it was solved, in
         // the units given.
         Err(Error::InvalidArgument(m)) => {
-            return Err(exit::usage(format!("{name}: {}", located_in_units(model, &m, &from, req.deg))));
+            return Err(exit::usage(led_by(&name, &name, &located_in_units(model, &m, &from, req.deg))));
         }
         Err(e) => {
             if let Some(usage) = range_too_long(&name, &e, req.from, req.to, req.deg) {

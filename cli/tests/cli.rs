@@ -1668,6 +1668,24 @@ fn a_loop_whose_lengths_are_all_zero_is_located_in_the_units_given() {
     }
 }
 
+/// The error of a loop whose lengths are all zero names the mechanism, and where it was solved,
+/// once under every subcommand: the runtime writes the location into the error's text, and the
+/// command line led the text with the mechanism again (`solve` with the inputs as given too:
+/// "FourBar at 30: ... in `FourBar` at phi = 30").
+#[test]
+fn a_loop_whose_lengths_are_all_zero_names_the_mechanism_once() {
+    for (deg, at) in [(true, ["30", "60"]), (false, ["0.5", "1"])] {
+        for (args, located) in on_zero_loops(at, deg) {
+            let out = kinloop(&args.iter().map(String::as_str).collect::<Vec<_>>());
+            let err = String::from_utf8_lossy(&out.stderr);
+            let line = err.lines().find(|l| l.starts_with("error:")).expect("an error line");
+            let mechanism = line.split("in `").nth(1).and_then(|r| r.split('`').next()).expect("the location");
+            assert_eq!(line.matches(mechanism).count(), 1, "{args:?}: {line}");
+            assert_eq!(line.matches(&format!("at {located}")).count(), 1, "{args:?}: {line}");
+        }
+    }
+}
+
 /// A loop whose lengths are all zero is a usage error (exit code 2: the parameters are at
 /// fault, as a parameter without a value is) under every subcommand that solves, in degrees
 /// or not: `solve`, `dynamics` and `simulate` exited 1 (a failed solve) where `sweep`, `trace`,
