@@ -524,6 +524,8 @@ impl Command {
             }
             Command::Dynamics { decl, flywheel, .. } => (vec![&decl.file], named("--flywheel", flywheel)),
             Command::Cam { decl, plot, .. } => (vec![&decl.file], named("--plot", plot)),
+            // `--out -` is standard output, not a file.
+            Command::Animate { decl, out, .. } if out.as_os_str() == "-" => (vec![&decl.file], Vec::new()),
             Command::Animate { decl, out, .. } => (vec![&decl.file], vec![("--out", out.as_path())]),
             Command::Check { decl }
             | Command::Solve { decl, .. }
@@ -578,6 +580,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), Failed> {
     let (read, written) = cli.command.files();
+    output::not_dash(&written)?;
     output::not_read(&read, &written)?;
     output::not_standard_output(&written)?;
     match cli.command {

@@ -106,6 +106,21 @@ pub fn not_read(read: &[&Path], written: &[(&str, &Path)]) -> Result<(), Failed>
     Ok(())
 }
 
+/// Refuses `-` as a file to write (`--events -`, `--flywheel -`, `--plot -`): by the usual
+/// convention, and `animate --out -`'s, it names standard output, which holds the command's
+/// table here, and it made a file named `-` in the working directory without a word. A usage
+/// error ([`exit::USAGE`]) naming the option and what to write instead, before anything is
+/// written. `written` holds no `--out -` (it is standard output, not a file: see `main`).
+pub fn not_dash(written: &[(&str, &Path)]) -> Result<(), Failed> {
+    match written.iter().find(|(_, out)| out.as_os_str() == "-") {
+        Some((option, _)) => Err(exit::usage(format!(
+            "{option} - would be standard output, which the command's own output goes to: name a file (`./-` for a \
+             file named `-`)"
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// Refuses a file to write that standard output is redirected to (`kinloop sweep four_bar.kl
 /// --events out.csv > out.csv`): the table written to standard output and the file written by
 /// the option would overwrite each other's bytes, and the command would succeed with neither

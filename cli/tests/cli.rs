@@ -652,6 +652,47 @@ fn an_events_file_made_is_removed_when_the_table_cannot_be_written() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `-` given to an option that writes a file (`--events`, `--flywheel`, `--plot`) is a usage
+/// error naming the option and how to name a file of that name: it made a file named `-` in the
+/// working directory without a word, where `animate --out -` (and the usual convention) is
+/// standard output, which holds the table here. `./-` is still that file.
+#[test]
+fn a_dash_for_a_file_written_is_refused() {
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-dash-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let (four_bar, engine, cam) = (shipped("four_bar.kl"), shipped("engine.kl"), shipped("dwell_cam.kl"));
+    let sweep = ["sweep", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "1", "--samples", "3"];
+    let trace = ["trace", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2", "--from", "0", "--to", "1"];
+    let runs: [(&[&str], &str); 4] = [
+        (&sweep, "--events"),
+        (&trace, "--events"),
+        (&["dynamics", &engine, "--speed", "150", "--samples", "8"], "--flywheel"),
+        (&["cam", &cam, "--point", "follower", "--guide", "0,1", "--samples", "8"], "--plot"),
+    ];
+    let run = |args: &[&str], option: &str, file: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+            .args(args)
+            .args([option, file])
+            .current_dir(&dir)
+            .output()
+            .expect("the kinloop binary runs")
+    };
+    for (args, option) in runs {
+        let out = run(args, option, "-");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?} {option} -: {err}");
+        assert!(err.contains(&format!("{option} -")) && err.contains("`./-`"), "{args:?} {option} -: {err}");
+        assert!(out.stdout.is_empty(), "{args:?} {option} -: nothing is written");
+        assert!(!dir.join("-").exists(), "{args:?} {option} -: a file named `-` was made");
+        // A file of that name, named so, is written.
+        let out = run(args, option, "./-");
+        assert!(out.status.success(), "{args:?} {option} ./-: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(std::fs::metadata(dir.join("-")).is_ok_and(|m| m.len() > 0), "{args:?} {option} ./-");
+        std::fs::remove_file(dir.join("-")).expect("the file named `-`");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A count of one is named in the singular: one input given where a mechanism has two.
 #[test]
 fn one_input_is_named_in_the_singular() {
