@@ -125,6 +125,14 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     let name = model.name().to_string();
     let failed = |e: &dyn std::fmt::Display| failed(&name, e);
     let Endpoints { from, to, guess } = endpoints(model, req)?;
+    // Said in the command line's terms: the runtime's refusal named its own arguments ("a sweep
+    // with several samples needs `to` different from `from`").
+    if from == to {
+        return Err(usage(format!(
+            "--from {} --to {}: an animation moves the mechanism from --from to --to: give --to different from --from",
+            req.from, req.to
+        )));
+    }
     let kinds = model.input_kinds().to_vec();
     let motion = match model.motion(&from, &to, samples, &guess) {
         Ok(motion) => motion,

@@ -200,8 +200,18 @@ fn stream<W: Write, E>(
 /// are rows: one sample cannot be two different inputs (it wrote the row at `--from` alone,
 /// `--to` unread), and none writes nothing. `--samples 0` was refused by the library's own
 /// message, "a sweep needs at least one sample", which sent a reader with two different ends to
-/// a second refusal at 1.
+/// a second refusal at 1. Several samples at one input (`--to` equal to `--from`) are refused
+/// too, saying to give another `--to` or a single sample.
 fn too_few_samples(req: &Request, two_ends: bool) -> Result<(), Failed> {
+    // Several samples at one input: the runtime's refusal said it in its own terms ("a sweep with
+    // several samples needs `to` different from `from`"), naming no option and no way out.
+    if !two_ends && req.samples > 1 {
+        return Err(exit::usage(format!(
+            "--samples {} from --from {} to --to {}, the same inputs: give --to different from --from, or --samples 1 \
+             for the state at --from alone",
+            req.samples, req.from, req.to
+        )));
+    }
     let least = if two_ends { 2 } else { 1 };
     if req.samples >= least {
         return Ok(());

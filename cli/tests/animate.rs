@@ -205,7 +205,7 @@ fn exit_codes() {
     fails_without_output(&b, &txt, 2, "cannot tell the format");
     let mut c = vec!["animate", fb.as_str(), "--from", "1", "--to", "1", "--params", FOUR_BAR, "--out"];
     c.push(&p);
-    fails_without_output(&c, &path, 2, "needs `to` different from `from`");
+    fails_without_output(&c, &path, 2, "give --to different from --from");
     let mut d = a.clone();
     d.extend(["--format", "html", "--show", "delta"]);
     fails_without_output(&d, &path, 2, "delta");

@@ -243,7 +243,7 @@ fn a_refused_range_is_refused_before_the_cams_report() {
     let o = kinloop(&args);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("needs `to` different from `from`"), "{stderr}");
+    assert!(stderr.contains("give --to different from --from"), "{stderr}");
     assert!(!stderr.contains("cam:"), "{stderr}");
     assert!(!path.exists());
 }

@@ -301,7 +301,7 @@ fn sweep_arguments_the_runtime_refuses_are_usage_errors() {
     let empty = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "0", "--params", params]);
     let err = String::from_utf8_lossy(&empty.stderr);
     assert_eq!(empty.status.code(), Some(2), "{err}");
-    assert!(err.contains("`to` different from `from`"), "{err}");
+    assert!(err.contains("give --to different from --from"), "{err}");
     assert!(empty.stdout.is_empty());
     let none = kinloop(&["sweep", &four_bar, "--from", "0", "--to", "1", "--samples", "0", "--params", params]);
     let err = String::from_utf8_lossy(&none.stderr);
@@ -691,6 +691,44 @@ fn a_dash_for_a_file_written_is_refused() {
         std::fs::remove_file(dir.join("-")).expect("the file named `-`");
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `sweep` of several samples and `animate` from one input to the same are usage errors said in
+/// the command line's terms, naming `--from`, `--to` and what to give instead: both passed on
+/// the runtime's "invalid argument: a sweep with several samples needs `to` different from
+/// `from`", which names no option. `sweep --samples 1` there still writes that one state.
+#[test]
+fn a_sweep_or_an_animation_to_where_it_starts_says_to_give_another_to() {
+    let four_bar = shipped("four_bar.kl");
+    let svg = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("same_ends.svg").display().to_string();
+    let params = ["--params", "a=1,b=3,c=2.5,d=3.2"];
+    let runs: [(Vec<&str>, &str); 4] = [
+        ([&["sweep", &four_bar], &params[..], &["--from", "1", "--to", "1"]].concat(), "--samples 1"),
+        (
+            [&["sweep", &four_bar], &params[..], &["--from", "60", "--to", "60.0", "--deg", "--samples", "5"]].concat(),
+            "--samples 1",
+        ),
+        (
+            [&["animate", &four_bar], &params[..], &["--from", "1", "--to", "1", "--out", &svg]].concat(),
+            "--to different",
+        ),
+        (
+            [&["animate", &four_bar], &params[..], &["--from", "60", "--to", "60", "--deg", "--out", &svg]].concat(),
+            "--to different",
+        ),
+    ];
+    for (args, instead) in runs {
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("--from") && err.contains("--to") && err.contains(instead), "{args:?}: {err}");
+        assert!(!err.contains("invalid argument") && !err.contains("`to`"), "{args:?}: {err}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    let (_, rows) =
+        csv(&kinloop(&[&["sweep", &four_bar], &params[..], &["--from", "1", "--to", "1", "--samples", "1"]].concat()));
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0][0], 1.0);
 }
 
 /// A count of one is named in the singular: one input given where a mechanism has two.
