@@ -762,7 +762,15 @@ fn read_text(file: &Path) -> Result<String, Failed> {
 /// (the place of its first byte that is not named), is [`exit::NO_INPUT`].
 pub(crate) fn read_at_most(file: &Path, max: usize, too_large: impl FnOnce() -> Failed) -> Result<String, Failed> {
     let cannot = |e: std::io::Error| {
-        eprintln!("error: cannot read {}: {e}", file.display());
+        // `-` is standard input by the usual convention, which no file option reads: "No such
+        // file or directory" alone said nothing of it.
+        match e.kind() == std::io::ErrorKind::NotFound && file.as_os_str() == "-" {
+            true => eprintln!(
+                "error: cannot read -: there is no file of that name, and `-` is not standard input here: name the \
+                 file to read (or /dev/stdin for standard input)"
+            ),
+            false => eprintln!("error: cannot read {}: {e}", file.display()),
+        }
         Failed(exit::NO_INPUT)
     };
     let mut bytes = Vec::new();

@@ -731,6 +731,43 @@ fn a_sweep_or_an_animation_to_where_it_starts_says_to_give_another_to() {
     assert_eq!(rows[0][0], 1.0);
 }
 
+/// A file to read named `-` (the declaration, `--targets`), where there is none of that name, is
+/// said not to be standard input, with what to give instead: it was "No such file or directory"
+/// alone, for a name that by the usual convention reads standard input. `/dev/stdin` reads it.
+#[test]
+fn a_dash_for_a_file_read_says_it_is_not_standard_input() {
+    let dir = std::env::temp_dir().join(format!("kinloop-cli-dash-read-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let coupler = shipped("coupler_four_bar.kl");
+    let points = dir.join("points.csv");
+    std::fs::write(&points, "0.9661,1.4940\n1.2330,2.2071\n0.6814,2.4363\n-0.0985,2.1152\n").expect("targets");
+    let synth = |targets: &str| {
+        ["synth", coupler.as_str(), "--targets", targets, "--path", "p", "--vary", "a=0.8..1.4,b=2..3.5", "--jobs", "1"]
+            .map(str::to_string)
+            .to_vec()
+    };
+    let run = |args: &[String], stdin: &std::path::Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_kinloop"))
+            .args(args)
+            .current_dir(&dir)
+            .stdin(std::fs::File::open(stdin).expect("standard input"))
+            .output()
+            .expect("the kinloop binary runs")
+    };
+    let check = |file: &str| vec!["check".to_string(), file.to_string()];
+    for (args, stdin) in [(check("-"), PathBuf::from(shipped("four_bar.kl"))), (synth("-"), points.clone())] {
+        let out = run(&args, &stdin);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(66), "{args:?}: {err}");
+        assert!(err.contains("not standard input") && err.contains("/dev/stdin"), "{args:?}: {err}");
+    }
+    for (args, stdin) in [(check("/dev/stdin"), PathBuf::from(shipped("four_bar.kl"))), (synth("/dev/stdin"), points)] {
+        let out = run(&args, &stdin);
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A count of one is named in the singular: one input given where a mechanism has two.
 #[test]
 fn one_input_is_named_in_the_singular() {
