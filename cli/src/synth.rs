@@ -103,7 +103,19 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     params::require_values(model)?;
     precise_angles(model, &design, default_newton().largest_precise_angle())?;
-    let rows = crate::targets::read(req.targets)?;
+    let crate::targets::Targets { rows, header } = crate::targets::read(req.targets)?;
+    if let Some((line, (column, field, unit))) =
+        header.as_ref().and_then(|(n, text)| Some((n, crate::targets::angle_unit(text, req.deg)?)))
+    {
+        let (given, instead) = match unit {
+            "deg" => ("degrees", "give --deg (without it angles are read in radians)"),
+            _ => ("radians", "leave out --deg (with it angles are read in degrees)"),
+        };
+        return Err(exit::usage(format!(
+            "{} line {line}, column {column}: the header gives `{field}` in {given}: {instead}",
+            req.targets.display()
+        )));
+    }
     let task = task(model, req, &rows)?;
     let name = model.name().to_string();
     let problem = model.shared_synthesis_problem(&design, &task).map_err(|e| problem_error(&name, e, req))?;

@@ -14,9 +14,18 @@ pub const MAX_TARGETS_BYTES: usize = 16 << 20;
 /// numbers separated by one of them is a mistake said as such, not a header to skip.
 const OTHER_SEPARATORS: [char; 4] = [';', '\t', ' ', '|'];
 
-/// The numeric rows of the targets file `path`, every row the same width; a usage error naming
-/// the file, the line (and the column of a separator that is not the comma) otherwise.
-pub fn read(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
+/// The targets of a file: its rows of numbers, and its header where it has one.
+pub struct Targets {
+    /// The numeric rows, every row the same width.
+    pub rows: Vec<Vec<f64>>,
+    /// The header line skipped (its number from 1, and its text), if the file has one.
+    pub header: Option<(usize, String)>,
+}
+
+/// The numeric rows of the targets file `path`, every row the same width, with its header; a
+/// usage error naming the file, the line (and the column of a separator that is not the comma)
+/// otherwise.
+pub fn read(path: &Path) -> Result<Targets, Failed> {
     // A file named by mistake (a device that never ends, a large log) is refused after the most
     // a targets file may have, not read whole into memory.
     let text = crate::read_at_most(path, MAX_TARGETS_BYTES, || {
@@ -25,17 +34,44 @@ pub fn read(path: &Path) -> Result<Vec<Vec<f64>>, Failed> {
             path.display()
         ))
     })?;
-    rows(&text).map_err(|why| exit::usage(format!("{} {why}", path.display())))
+    let (rows, header) = table(&text).map_err(|why| exit::usage(format!("{} {why}", path.display())))?;
+    Ok(Targets { rows, header: header.map(|(n, line)| (n, line.to_string())) })
 }
 
-/// The rows of `text`; the error is what is wrong and where (`line 3: ...`), to follow the
-/// file's name.
+/// The rows of `text` ([`table`]).
+#[cfg(test)]
 fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
+    table(text).map(|(rows, _)| rows)
+}
+
+/// The first column of the header `line` whose angle unit (`deg` or `rad`, as `kinloop sweep`
+/// writes it, `phi [deg]`) is not the one angles are read in (degrees where `deg` is set):
+/// `(column, field, unit)`, the column from 1; `None` where there is none. A table written with
+/// `--deg` read without it (or the other way round) was taken in the other unit without a word:
+/// degrees read as radians, a fit to other targets.
+pub fn angle_unit(line: &str, deg: bool) -> Option<(usize, &str, &'static str)> {
+    line.split(',').enumerate().find_map(|(k, field)| {
+        let unit = field.trim().strip_suffix(']')?.rsplit_once('[')?.1.trim();
+        match (unit, deg) {
+            ("deg", false) => Some((k + 1, field.trim(), "deg")),
+            ("rad", true) => Some((k + 1, field.trim(), "rad")),
+            _ => None,
+        }
+    })
+}
+
+/// The rows of a text, and its header line (its number from 1, and its text) where it has one.
+type Table<'a> = (Vec<Vec<f64>>, Option<(usize, &'a str)>);
+
+/// The rows of `text` and its header line (its number from 1, and its text) where it has one;
+/// the error is what is wrong and where (`line 3: ...`), to follow the file's name.
+fn table(text: &str) -> Result<Table<'_>, String> {
     // A byte order mark first (a spreadsheet's "CSV UTF-8" writes one) is no part of the first
     // number: left on, it made a row of numbers "not a row of finite numbers", shown unchanged
     // (the mark is invisible).
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut header = None;
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {
         if let Some(why) = line.split(',').find_map(underflow) {
@@ -54,7 +90,7 @@ fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
                 }
                 rows.push(row);
             }
-            _ if k == 0 && is_header(line) => {}
+            _ if k == 0 && is_header(line) => header = Some((n + 1, line)),
             _ => {
                 return Err(match wrong_separator(line) {
                     Some((column, c)) => format!(
@@ -71,7 +107,7 @@ fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
     if rows.is_empty() {
         return Err("holds no targets".to_string());
     }
-    Ok(rows)
+    Ok((rows, header))
 }
 
 /// Why the field `field` is refused where it reads as a number too small for a double

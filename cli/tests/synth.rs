@@ -852,3 +852,52 @@ fn an_angle_parameter_too_large_to_search_precisely_is_a_usage_error() {
         assert_eq!(out.status.code(), Some(0), "{extra:?}: {}", String::from_utf8_lossy(&out.stderr));
     }
 }
+
+/// A targets table whose header names its angles' unit (`phi [deg],gamma [deg]`, as
+/// `kinloop sweep --deg` writes it) is read in that unit or refused: read without `--deg` its
+/// degrees were taken for radians without a word, and the search fitted other targets (a
+/// "valid" best candidate, exit code 0, two radians off). A header in radians is refused with
+/// `--deg` likewise; the unit that agrees is read, and finds the dimensions the table was
+/// written from.
+#[test]
+fn a_targets_header_in_the_other_angle_unit_is_refused() {
+    let mechanism = shipped("coupler_four_bar.kl");
+    let sweep = |deg: &[&str], to: &str| {
+        let args = ["sweep", &mechanism, "--params", "a=1.1,b=2.8", "--from", "0", "--to", to, "--samples", "5"];
+        let out = kinloop(&[&args[..], deg].concat());
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        // The input and `gamma`, the header's names and units kept.
+        let text = String::from_utf8(out.stdout).expect("utf-8");
+        let rows: Vec<String> =
+            text.lines().map(|l| l.split(',').collect::<Vec<_>>()).map(|c| format!("{},{}", c[0], c[2])).collect();
+        rows.join("\n")
+    };
+    let in_deg = file("synth_header_deg.csv", &sweep(&["--deg"], "80"));
+    let in_rad = file("synth_header_rad.csv", &sweep(&[], "1.4"));
+    assert!(std::fs::read_to_string(&in_deg).expect("deg").starts_with("phi [deg],gamma [deg]\n"));
+    assert!(std::fs::read_to_string(&in_rad).expect("rad").starts_with("phi [rad],gamma [rad]\n"));
+    let synth = |targets: &str, deg: &[&str]| {
+        let args =
+            ["synth", &mechanism, "--targets", targets, "--function", "phi:gamma", "--vary", "a=0.8..1.4,b=2..3.5"];
+        kinloop(&[&args[..], &["--starts", "8", "--csv"], deg].concat())
+    };
+    for (targets, deg, said) in [
+        (&in_deg, &[][..], "`phi [deg]` in degrees: give --deg"),
+        (&in_rad, &["--deg"][..], "`phi [rad]` in radians: leave out --deg"),
+    ] {
+        let out = synth(targets, deg);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{targets} {deg:?}: {err}");
+        assert!(err.contains(&format!("line 1, column 1: the header gives {said}")), "{targets} {deg:?}: {err}");
+        assert!(out.stdout.is_empty(), "{targets} {deg:?}");
+    }
+    for (targets, deg) in [(&in_deg, &["--deg"][..]), (&in_rad, &[][..])] {
+        let out = synth(targets, deg);
+        assert_eq!(out.status.code(), Some(0), "{targets} {deg:?}: {}", String::from_utf8_lossy(&out.stderr));
+        let (_, rows) = csv(&out);
+        let (a, b): (f64, f64) = (rows[0][3].parse().expect("a"), rows[0][4].parse().expect("b"));
+        // The targets are the mechanism's own positions (written in full precision): the fit
+        // finds its dimensions to the solve's tolerance, far within 1e-6 of lengths about 1.
+        assert!((a - 1.1).abs() < 1e-6 && (b - 2.8).abs() < 1e-6, "{targets} {deg:?}: a = {a}, b = {b}");
+    }
+}
