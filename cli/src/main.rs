@@ -445,9 +445,9 @@ enum Command {
         file: PathBuf,
         /// The targets, CSV: rows `x,y` (a path, inputs free along `--range`), `input,x,y` (a
         /// path at given inputs) or `input,output` (a function), numbers separated by commas
-        /// (`.` the decimal point); `#` comments and a first line of names (a header) are
-        /// skipped, numbers separated otherwise (`1;2`) are an error. A header's angle unit
-        /// (`phi [deg]`, as `sweep --deg` writes it) must agree with `--deg`.
+        /// (`.` the decimal point; quoted or not); `#` comments and a first line of names (a
+        /// header) are skipped, numbers separated otherwise (`1;2`) are an error. A header's
+        /// angle unit (`phi [deg]`, as `sweep --deg` writes it) must agree with `--deg`.
         #[arg(long, value_name = "FILE")]
         targets: PathBuf,
         /// The point whose path goes through the targets.

@@ -51,13 +51,23 @@ fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
 /// degrees read as radians, a fit to other targets.
 pub fn angle_unit(line: &str, deg: bool) -> Option<(usize, &str, &'static str)> {
     line.split(',').enumerate().find_map(|(k, field)| {
-        let unit = field.trim().strip_suffix(']')?.rsplit_once('[')?.1.trim();
+        let field = unquoted(field);
+        let unit = field.strip_suffix(']')?.rsplit_once('[')?.1.trim();
         match (unit, deg) {
-            ("deg", false) => Some((k + 1, field.trim(), "deg")),
-            ("rad", true) => Some((k + 1, field.trim(), "rad")),
+            ("deg", false) => Some((k + 1, field, "deg")),
+            ("rad", true) => Some((k + 1, field, "rad")),
             _ => None,
         }
     })
+}
+
+/// A field of a row without the spaces around it and, where it is quoted (`"1.5"`: a spreadsheet
+/// that quotes every field), without its quotes: a quoted number was "not a row of finite
+/// numbers", and a first row of them a header, skipped. Numbers hold no comma or quote, so a
+/// field needs no more of the RFC 4180 rules to be read.
+fn unquoted(field: &str) -> &str {
+    let field = field.trim();
+    field.strip_prefix('"').and_then(|f| f.strip_suffix('"')).map_or(field, str::trim)
 }
 
 /// The rows of a text, and its header line (its number from 1, and its text) where it has one.
@@ -77,7 +87,7 @@ fn table(text: &str) -> Result<Table<'_>, String> {
         if let Some(why) = line.split(',').find_map(underflow) {
             return Err(format!("line {}: {why}", n + 1));
         }
-        let row: Result<Vec<f64>, _> = line.split(',').map(|v| v.trim().parse::<f64>()).collect();
+        let row: Result<Vec<f64>, _> = line.split(',').map(|v| unquoted(v).parse::<f64>()).collect();
         match row {
             Ok(row) if row.iter().all(|v| v.is_finite()) => {
                 if let Some(first) = rows.first().filter(|f| f.len() != row.len()) {
@@ -115,7 +125,8 @@ fn table(text: &str) -> Result<Table<'_>, String> {
 /// ([`crate::numbers::number`]): a target at 0 that was not written so. `None` for any other
 /// field.
 fn underflow(field: &str) -> Option<String> {
-    let zero = field.trim().parse::<f64>().is_ok_and(|v| v == 0.0);
+    let field = unquoted(field);
+    let zero = field.parse::<f64>().is_ok_and(|v| v == 0.0);
     if zero { crate::numbers::number(field).err() } else { None }
 }
 
@@ -123,7 +134,7 @@ fn underflow(field: &str) -> Option<String> {
 /// in a number, or a trailing comma, is a bad row), and it is not numbers separated by another
 /// separator than the comma (`1;2` is a row written wrong, not the names of columns).
 fn is_header(line: &str) -> bool {
-    line.split(',').all(|v| v.trim().parse::<f64>().is_err()) && wrong_separator(line).is_none()
+    line.split(',').all(|v| unquoted(v).parse::<f64>().is_err()) && wrong_separator(line).is_none()
 }
 
 /// Where `line` is numbers separated, somewhere, by another separator than the comma: the
@@ -211,6 +222,18 @@ mod tests {
             assert!(e.contains("too small for a 64-bit float"), "{text:?}: {e}");
         }
         assert_eq!(rows("0,-0.0\n0e-400,5e-324\n"), Ok(vec![vec![0.0, -0.0], vec![0.0, 5e-324]]));
+    }
+
+    /// Quoted fields (a spreadsheet that quotes every field) are read without their quotes: a
+    /// first row of quoted numbers was taken for a header and skipped, the next refused.
+    #[test]
+    fn quoted_fields_are_read_without_their_quotes() {
+        assert_eq!(rows("\"1\",\"2\"\n\"3\", \" 4.5 \"\n"), Ok(vec![vec![1.0, 2.0], vec![3.0, 4.5]]));
+        assert_eq!(rows("\"x [mm]\",\"y [mm]\"\n\"1\",2\n"), Ok(vec![vec![1.0, 2.0]]));
+        assert!(rows("\"1e-400\",2\n").expect_err("underflow").contains("too small for a 64-bit float"));
+        assert_eq!(super::angle_unit("\"phi [deg]\",\"y\"", false), Some((1, "phi [deg]", "deg")));
+        // A lone quote is no quoted field.
+        assert!(rows("1,2\n\"3,4\n").is_err());
     }
 
     #[test]

@@ -901,3 +901,24 @@ fn a_targets_header_in_the_other_angle_unit_is_refused() {
         assert!((a - 1.1).abs() < 1e-6 && (b - 2.8).abs() < 1e-6, "{targets} {deg:?}: a = {a}, b = {b}");
     }
 }
+
+/// A targets file with every field quoted (a spreadsheet's "quote all fields"), its header too,
+/// gives the candidates of the same file unquoted: its first row of quoted numbers was taken for
+/// a header and dropped, and the next refused as "not a row of finite numbers".
+#[test]
+fn quoted_targets_are_the_same_targets() {
+    let rows: Vec<(f64, [f64; 2])> = phis().iter().map(|&p| (p, coupler_point(TRUTH, p))).collect();
+    let plain: Vec<String> = rows.iter().map(|(p, [x, y])| format!("{p:?},{x:?},{y:?}")).collect();
+    let quoted: Vec<String> = rows.iter().map(|(p, [x, y])| format!("\"{p:?}\",\"{x:?}\",\" {y:?}\"")).collect();
+    let plain = file("synth_plain.csv", &format!("phi,x,y\n{}\n", plain.join("\n")));
+    let quoted = file("synth_quoted.csv", &format!("\"phi\",\"x\",\"y\"\n{}\n", quoted.join("\n")));
+    let synth = |targets: &str| {
+        let args = ["synth", &shipped("coupler_four_bar.kl"), "--targets", targets, "--path", "p", "--vary", VARY];
+        let out = kinloop(&[&args[..], &["--starts", "4", "--csv", "--jobs", "1"]].concat());
+        assert_eq!(out.status.code(), Some(0), "{targets}: {}", String::from_utf8_lossy(&out.stderr));
+        out.stdout
+    };
+    let (quoted, plain) = (String::from_utf8(synth(&quoted)), String::from_utf8(synth(&plain)));
+    assert!(plain.as_ref().is_ok_and(|t| t.lines().count() > 1), "{plain:?}");
+    assert_eq!(quoted, plain);
+}
