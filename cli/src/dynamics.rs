@@ -119,7 +119,9 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     if !(MIN_DELTA..2.0).contains(&req.delta) {
         let min = Number(MIN_DELTA);
-        return Err(usage(format!("--delta {} must lie between {min} and 2 (e.g. 0.02)", Number(req.delta))));
+        // "Between 1e-6 and 2" refused 2 while it seemed to allow it: 2 itself is out (a speed
+        // fluctuating from 0, no flywheel to size), as `--help` says.
+        return Err(usage(format!("--delta {} must be from {min} to below 2 (e.g. 0.02)", Number(req.delta))));
     }
     if !req.start.is_finite() {
         return Err(usage(format!("--start {} must be a finite number", Number(req.start))));

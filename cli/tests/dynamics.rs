@@ -219,6 +219,12 @@ fn bad_requests_and_bad_values_are_usage_errors() {
         assert_eq!(c, Some(2), "{args:?}: {e}");
         assert!(e.contains(args[0]), "{args:?}: {e}");
     }
+    // The bound said as the help says it: 2 itself is refused, and was told "between 1e-6 and 2".
+    for delta in ["2", "2.5"] {
+        let (c, e) = code(&["dynamics", engine.as_str(), "--speed", "10", "--delta", delta]);
+        assert_eq!(c, Some(2), "{e}");
+        assert!(e.contains(&format!("--delta {delta} must be from 1e-6 to below 2")), "{e}");
+    }
     // A flywheel file that cannot be created stops the command before the cycle is computed
     // (here a start angle the cycle would refuse); one that can is removed again when the
     // cycle fails.
