@@ -510,6 +510,9 @@ struct Units {
     /// A turn in the unit of the errors where they are an angle's (a function of an angle
     /// output), whose errors the library takes modulo a turn; `None` otherwise.
     turn: Option<f64>,
+    /// Per parameter of the model (by name): the unit its values are written in, the
+    /// declaration's (an angle's in radians, with or without `--deg`), for the header.
+    params: Vec<(String, &'static str)>,
 }
 
 impl Units {
@@ -526,7 +529,8 @@ impl Units {
         let error_unit = if kind == QuantityKind::Angle { angle_unit } else { kind.unit() };
         let input = model.input_kinds().first().map_or(1.0, |&k| of(k));
         let turn = (kind == QuantityKind::Angle).then_some(TAU * angle);
-        Units { error: of(kind), error_unit, input, angle, angle_unit, turn }
+        let params = model.params().iter().cloned().zip(model.param_kinds().iter().map(|k| k.unit())).collect();
+        Units { error: of(kind), error_unit, input, angle, angle_unit, turn, params }
     }
 }
 
@@ -555,7 +559,14 @@ fn defects(c: &Candidate, u: &Units) -> String {
 fn header(report: &SynthesisReport, u: &Units) -> Vec<String> {
     let [rank, start, valid, max_error, rms_error, evaluations, defects] = COLUMNS;
     let mut h: Vec<String> = [rank, start, valid].map(String::from).to_vec();
-    h.extend(report.variables.iter().cloned());
+    // Each design variable with its unit, as every other column has one: an angle's is radians
+    // whatever `--deg` says (the variables are parameters, in the declaration's units), which a
+    // bare `alpha` beside `max_error [deg]` left to be guessed.
+    let variable = |v: &String| match u.params.iter().find(|(p, _)| p == v) {
+        Some((_, unit)) if !unit.is_empty() => format!("{v} [{unit}]"),
+        _ => v.clone(),
+    };
+    h.extend(report.variables.iter().map(variable));
     let unit = if u.error_unit.is_empty() { String::new() } else { format!(" [{}]", u.error_unit) };
     h.extend([format!("{max_error}{unit}"), format!("{rms_error}{unit}")]);
     h.extend([evaluations, defects].map(String::from));

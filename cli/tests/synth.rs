@@ -75,7 +75,14 @@ fn path_synthesis_recovers_the_four_bar_and_equals_the_library() {
     let (header, rows) = csv(&out);
     let names = ["a", "b", "c", "d", "e", "alpha"];
     assert_eq!(header[..3], ["rank", "start", "valid"]);
-    assert_eq!(header[3..9], names);
+    // Each variable with its unit, an angle's in radians under `--deg` (the variables are
+    // parameters, in the declaration's units): `alpha` stood bare beside `max_error [length
+    // unit]`, its unit to be guessed.
+    let length = |v: &str| format!("{v} [length unit]");
+    assert_eq!(
+        header[3..9],
+        ["a", "b", "c", "d", "e"].map(length).into_iter().chain(["alpha [rad]".into()]).collect::<Vec<_>>()
+    );
     assert_eq!(header[9..], ["max_error [length unit]", "rms_error [length unit]", "evaluations", "defects"]);
     let best = &rows[0];
     assert_eq!((best[0].as_str(), best[2].as_str(), best[12].as_str()), ("1", "1", "\"\""));
@@ -182,7 +189,7 @@ fn an_angle_outputs_errors_are_in_the_unit_of_its_targets() {
     };
     let (header_deg, deg) = run("synth_fn_deg.csv", &in_deg, &["--deg"]);
     let (header_rad, rad) = run("synth_fn_rad.csv", &in_rad, &[]);
-    assert_eq!(header_deg[3..7], ["a", "b", "max_error [deg]", "rms_error [deg]"]);
+    assert_eq!(header_deg[3..7], ["a [length unit]", "b [length unit]", "max_error [deg]", "rms_error [deg]"]);
     assert_eq!(header_rad[5..7], ["max_error [rad]", "rms_error [rad]"]);
     let number = |row: &[String], k: usize| row[k].parse::<f64>().expect("a number");
     // The best candidate's errors from its dimensions, in closed form: the rocker angle of D -> C,
@@ -714,7 +721,7 @@ fn a_design_variable_named_as_the_command_s_own_column_is_a_usage_error() {
     let out = run("offset");
     assert!(out.status.code() != Some(2), "{}", String::from_utf8_lossy(&out.stderr));
     let (header, _) = csv(&out);
-    assert_eq!(header[..4], ["rank", "start", "valid", "offset"]);
+    assert_eq!(header[..4], ["rank", "start", "valid", "offset [length unit]"]);
 }
 
 /// Angles in degrees with `--deg` are refused where they cannot be converted to radians as the

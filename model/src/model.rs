@@ -162,6 +162,8 @@ pub struct Model {
     output_kinds: Vec<QuantityKind>,
     /// The parameters that are angles (by index), whose size `angle_param_beyond` bounds.
     angle_params: Vec<usize>,
+    /// What each parameter is, for the unit its values are written in.
+    param_kinds: Vec<QuantityKind>,
     /// Per unknown: whether it follows the others (the compiled `Mechanism::FOLLOWERS`).
     pub(crate) followers: Vec<bool>,
     /// Per unknown: whether a closed form gives it as an angle (`CLOSED_FORM_ANGLES`).
@@ -427,6 +429,7 @@ impl Model {
             unknown_kinds: k.unknowns.iter().map(|&x| kind(x)).collect(),
             output_kinds: k.outputs.iter().map(|&x| kind(x)).collect(),
             angle_params: (0..k.params.len()).filter(|&p| k.params[p] == Kind::Angle).collect(),
+            param_kinds: k.params.iter().map(|&x| kind(x)).collect(),
             followers,
             closed_form_angles,
             piecewise,
@@ -571,6 +574,21 @@ impl Model {
     /// Output column names (`p.x`, `p.y` for a point `p`, then the scalar outputs).
     pub fn outputs(&self) -> &[String] {
         &self.outputs
+    }
+
+    /// What each parameter is (angle, length, ...), as the macro infers it: an angle parameter
+    /// is in radians, whatever a command line writes angles in.
+    ///
+    /// ```
+    /// use kinloop_model::Model;
+    /// use kinloop_runtime::QuantityKind;
+    /// let text = "pub struct Crank { params r = 1, l = 3, tilt = 0.1; input phi; unknowns psi = 0, x = 3; \
+    ///             loop a: r @ (phi + tilt) == (x, 0) + l @ psi; }";
+    /// let m = Model::read("crank.kl", text).expect("the crank reads");
+    /// assert_eq!(m.param_kinds(), [QuantityKind::Length, QuantityKind::Length, QuantityKind::Angle]);
+    /// ```
+    pub fn param_kinds(&self) -> &[QuantityKind] {
+        &self.param_kinds
     }
 
     /// What each input is (angle, length, ...), as the macro infers it.
