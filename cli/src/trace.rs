@@ -4,7 +4,7 @@
 //! listed on standard error, or written to `--events`.
 
 use crate::csv_rows::CsvRows;
-use crate::solve::{degrees, led_by, located_in_units, model_inputs, solve_failed, start_failed, units};
+use crate::solve::{degrees, led_by, located_in_units, model_inputs, parse_inputs, solve_failed, start_failed, units};
 use crate::sweep::{events_columns, range_too_long, write_events};
 use crate::{Failed, exit, output, samples};
 use kinloop_model::Model;
@@ -134,7 +134,17 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     } else if traced.truncated {
         eprintln!("{name}: stopped at --max-points {} before the curve closed or left the path", req.max_points);
     } else {
-        eprintln!("{name}: the curve left the path from `from - (to - from)` to `to` after {points} points");
+        // The segment's ends as numbers in the units given: `from - (to - from)` named the
+        // library's arguments, for the reader to work out.
+        let (a, b) = (parse_inputs(req.from, ni, "--from")?, parse_inputs(req.to, ni, "--to")?);
+        let back: Vec<String> = a.iter().zip(&b).map(|(f, t)| Number(f - (t - f)).to_string()).collect();
+        eprintln!(
+            "{name}: the curve left the inputs' segment from {} to {} (as far behind --from {} as --to lies ahead) \
+             after {points} points",
+            back.join(","),
+            req.to,
+            req.from
+        );
     }
     Ok(())
 }

@@ -235,6 +235,27 @@ fn bad_options_are_usage_errors_naming_them() {
     }
 }
 
+/// A trace that leaves the inputs' segment says where the segment is, in numbers in the units
+/// given (for each input, as far behind `--from` as `--to` lies ahead): it said "the path from
+/// `from - (to - from)` to `to`", the library's arguments, for the reader to work out. The
+/// crank of a Grashof four-bar turns on past `--to`, so its curve leaves the segment there.
+#[test]
+fn a_trace_that_leaves_the_segment_says_where_it_is() {
+    let four_bar = shipped("four_bar.kl");
+    let runs: [(&[&str], &str); 2] = [
+        (&["--from", "30", "--to", "60", "--deg"], "from 0 to 60 (as far behind --from 30"),
+        (&["--from", "1", "--to", "1.5"], "from 0.5 to 1.5 (as far behind --from 1"),
+    ];
+    for (range, said) in runs {
+        let args = [&["trace", &four_bar, "--params", "a=1,b=3,c=2.5,d=3.2"][..], range].concat();
+        let out = kinloop(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{range:?}: {stderr}");
+        assert!(stderr.contains(&format!("FourBar: the curve left the inputs' segment {said}")), "{range:?}: {stderr}");
+        assert!(!stderr.contains("from - (to - from)"), "{range:?}: {stderr}");
+    }
+}
+
 /// `--max-points` stops the trace there, and says so.
 #[test]
 fn the_most_points_stop_the_trace_and_it_says_so() {
