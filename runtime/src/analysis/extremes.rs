@@ -51,8 +51,9 @@ impl LocalExtreme {
     }
 }
 
-/// `true` when `a` and `b` have strictly opposite signs.
-fn sign_change(a: f64, b: f64) -> bool {
+/// `true` when `a` and `b` have strictly opposite signs (compared, not multiplied: the product
+/// of two analogs of a tiny mechanism underflows to zero).
+pub(crate) fn sign_change(a: f64, b: f64) -> bool {
     (a > 0.0 && b < 0.0) || (a < 0.0 && b > 0.0)
 }
 

@@ -3,7 +3,7 @@
 //! angle spent while it falls back.
 
 use crate::Kernel;
-use crate::analysis::extremes::{Corner, extremes_across};
+use crate::analysis::extremes::{Corner, extremes_across, sign_change};
 use crate::analysis::{ColumnOf, Extreme, Jet, SampledOf};
 use crate::error::Error;
 
@@ -81,9 +81,11 @@ fn time_ratio_across(
         )));
     }
     let period = last.x - first.x;
-    // Seam: the analog changes sign between the last interval and the first one.
+    // Seam: the analog changes sign between the last interval and the first one. Its signs
+    // compared, not their product's: the analogs of a tiny output (1e-300 of a mechanism's
+    // unit) multiply to zero, and the extreme on the seam was lost.
     let (before, after) = (samples[n - 2].d1, samples[1].d1);
-    if found.len() == 1 && before * after < 0.0 {
+    if found.len() == 1 && sign_change(before, after) {
         let kind = if before > 0.0 { Extreme::Max } else { Extreme::Min };
         let at = if first.d1.abs() <= last.d1.abs() { first } else { Jet { x: first.x, ..last } };
         found.push(crate::analysis::LocalExtreme { kind, at });
@@ -136,6 +138,27 @@ mod tests {
         let t = time_ratio(&s, offset_cosine).unwrap();
         assert_eq!(t.max.x, 1.0);
         assert!((t.rising - TAU / 2.0).abs() < 1e-14);
+    }
+
+    /// An extreme on the seam is found at every size of the output: a cosine of amplitude `r`
+    /// with its maximum at the first sample, from `r = 1e-300` (a mechanism's length at a tiny
+    /// size) to `1e300`. The seam was judged by the product of the analogs either side of it,
+    /// which underflowed to zero below an amplitude of about `1e-161` (analogs of `0.17` of it,
+    /// squared, below half the least subnormal): the maximum was lost and the ratio refused as "0 maxima". The ratio of a
+    /// cosine is exactly 1 (rising for pi, the half turn from the maximum on the seam to the
+    /// minimum at `1 + pi`, located to rounding).
+    #[test]
+    fn an_extreme_on_the_seam_is_found_at_every_scale() {
+        for r in [1e-300, 1e-200, 1e-170, 1e-6, 1.0, 1e6, 1e300] {
+            let f =
+                |x: f64| Ok(Jet { x, value: r * (x - 1.0).cos(), d1: -r * (x - 1.0).sin(), d2: -r * (x - 1.0).cos() });
+            let s = Jet::sample(f, 1.0, 1.0 + TAU, 36).unwrap();
+            let t = time_ratio(&s, f).unwrap_or_else(|e| panic!("r = {r:e}: {e}"));
+            assert_eq!(t.max.x, 1.0, "r = {r:e}: {t:?}");
+            assert!((t.min.x - (1.0 + PI)).abs() < 1e-14, "r = {r:e}: {t:?}");
+            assert!((t.rising - PI).abs() < 1e-14 && (t.ratio() - 1.0).abs() < 1e-14, "r = {r:e}: {t:?}");
+            assert!((t.max.value / r - 1.0).abs() < 1e-15 && (t.min.value / r + 1.0).abs() < 1e-15, "{t:?}");
+        }
     }
 
     /// Samples over part of a period are refused: the seam made the first sample an extreme
