@@ -136,3 +136,35 @@ fn bad_evolution_settings_are_refused() {
     let e = Search::default().with_seeds(vec![vec![f64::NAN; 6]]).run(&problem).unwrap_err();
     assert!(matches!(&e, SynthesisError::InvalidConfig(m) if m.contains("seed 0") && m.contains("not finite")), "{e}");
 }
+
+/// The evolution stops early where its best member meets the targets to rounding, wherever the
+/// mechanism stands: five timed points of a four-bar whose crank pivot is `(s, s)`, every design
+/// variable held at the truth (bounds of one value), so that every member of the population is
+/// the exact design from its first generation. Its residuals are then the rounding of values of
+/// magnitude `s`, about `2e-16 s` each, which passes `tol` (`1e-14`) times the targets' spread
+/// (about 2) from `s = 1e2` on: the early stop compared the residual norm with that alone, and at
+/// `s = 1e4` and `1e6` the evolution ran all its 50 generations (`8 * 51 = 408` evaluations)
+/// where at `s = 0` it stopped at once. It stops as the local solve's convergence test does, on
+/// the residuals' root mean square within `tol` of the spread or within a few roundings of the
+/// magnitudes they are computed from: the initial population's 8 evaluations and at most one
+/// more, the Jacobian of its best member that judges the latter.
+#[test]
+fn the_evolution_stops_at_an_exact_fit_far_from_the_origin() {
+    use super::mechanisms::PlacedFourBar;
+    let phis: Vec<f64> = (0..5).map(|k| 0.3 + 1.1 * k as f64).collect();
+    let truth = FOUR_BAR;
+    for s in [0.0, 1e4, 1e6] {
+        let targets: Vec<[f64; 2]> = phis.iter().map(|&p| coupler_point(truth, p).map(|v| v + s)).collect();
+        let task = Task::path("p", targets).timed(phis.clone());
+        let design =
+            ["a", "b", "c", "g", "e", "alpha"].iter().zip(truth).fold(Design::new(), |d, (n, v)| d.var(*n, v, v));
+        let m = PlacedFourBar { ax: s, ay: s, ..PlacedFourBar::default() };
+        let problem = Problem::new(m, &design, &task).unwrap();
+        let report = Search::default().with_global(de(8, 50, 1)).with_starts(0..1).run(&problem).unwrap();
+        let best = report.best().unwrap_or_else(|| panic!("at {s:e}: {report:#?}"));
+        assert!(best.max_error <= 1e-13 * s.max(1.0), "at {s:e}: {best:?}");
+        // The evaluations of the evolution: the report's less the polishing local solve's.
+        let evolution = report.evaluations - best.local.evaluations;
+        assert!((8..=9).contains(&evolution), "at {s:e}: {evolution} evaluations in the evolution");
+    }
+}

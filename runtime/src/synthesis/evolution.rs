@@ -45,8 +45,11 @@ pub struct DeConfig {
     /// [`DeConfig::MAX_POPULATION`]; default `32`).
     pub population: usize,
     /// Generations (default `40`; `0` only polishes the best of the Halton points). The
-    /// evolution stops early when a member meets the local solve's tolerance. With the
-    /// population, at most [`DeConfig::MAX_EVALUATIONS`] evaluations.
+    /// evolution stops early when its best member meets the local solve's convergence test
+    /// (see [`LocalConfig::tol`](super::LocalConfig::tol): its residuals' root mean square within
+    /// `tol` of the targets' size, or within their rounding, judged on that member's Jacobian,
+    /// one evaluation more each time the best member changes). With the population, at most
+    /// [`DeConfig::MAX_EVALUATIONS`] evaluations.
     pub generations: usize,
     /// The differential weight, in `(0, 2]` (default `0.7`).
     #[cfg_attr(feature = "serde", serde(with = "crate::floats_serde"))]
@@ -197,20 +200,20 @@ pub(crate) fn trials(pop: &[Vec<f64>], lo: &[f64], hi: &[f64], cfg: &DeConfig, r
 
 /// The evolution of one island: from the population `pop` (its residual norms `fit`, an
 /// unassembled member `inf`), `generations` rounds of trials evaluated by `batch` and selected
-/// in member order; stops early when a member's norm is at most `done`. Returns the number of
-/// evaluations made.
+/// in member order; stops early, before a generation, when `done(pop, fit)` says the population
+/// is good enough. Returns the number of evaluations made by `batch`.
 pub(crate) fn evolve(
     pop: &mut [Vec<f64>],
     fit: &mut [f64],
     bounds: (&[f64], &[f64]),
     cfg: &DeConfig,
     rng: &mut IslandRng,
-    done: f64,
+    mut done: impl FnMut(&[Vec<f64>], &[f64]) -> bool,
     batch: impl Fn(&[Vec<f64>]) -> Vec<f64>,
 ) -> usize {
     let mut evaluations = 0;
     for _ in 0..cfg.generations {
-        if fit.iter().any(|&f| f <= done) {
+        if done(pop, fit) {
             break;
         }
         let t = trials(pop, bounds.0, bounds.1, cfg, rng);
@@ -251,7 +254,8 @@ mod tests {
             (0..30).map(|_| (0..2).map(|j| lo[j] + (hi[j] - lo[j]) * rng.uniform()).collect()).collect();
         let mut fit: Vec<f64> = pop.iter().map(|z| f(z)).collect();
         let cfg = DeConfig::default().with_population(30).with_generations(300).with_f(0.7).with_cr(0.9);
-        let n = evolve(&mut pop, &mut fit, (&lo, &hi), &cfg, &mut rng, 0.0, |b| b.iter().map(|z| f(z)).collect());
+        let exact = |_: &[Vec<f64>], fit: &[f64]| fit.iter().any(|&v| v <= 0.0);
+        let n = evolve(&mut pop, &mut fit, (&lo, &hi), &cfg, &mut rng, exact, |b| b.iter().map(|z| f(z)).collect());
         // At most every generation; fewer where a member reaches 0 exactly (the early stop).
         assert!(n <= 30 * 300 && n % 30 == 0, "{n}");
         let k = best(&fit, 1)[0];

@@ -188,13 +188,10 @@ impl<K: SensKernel> ProblemOf<K> {
         // 1e4 from the origin, or a crank 30 times longer than their spread, compute every
         // residual from values whose rounding alone passes `tol` of the spread, and exact fits
         // there ended "stopped on the step tolerance".
-        let root_targets = (self.targets() as f64).sqrt();
-        let row_weight: Vec<f64> =
-            self.channels.iter().flat_map(|&(c, w)| std::iter::repeat_n(w, channel_width(c))).collect();
+        let row_weight = self.row_weights();
         // The resolution (a pass over the Jacobian) only where the tolerance alone is not met.
         let met = |f: f64, e: &Eval<Q<K>>, z: &[f64]| {
-            let rms = f / root_targets;
-            rms <= cfg.tol * self.scale || rms <= ROUNDING * f64::EPSILON * self.resolution(e, z, &row_weight)
+            self.within_tol(f, cfg.tol) || self.within_rounding(f, e, z, &row_weight)
         };
         let stop = loop {
             if met(f, &e, &z) {
@@ -342,6 +339,28 @@ impl<K: SensKernel> ProblemOf<K> {
 }
 
 impl<K: SensKernel> ProblemOf<K> {
+    /// Whether residuals of norm `norm` meet the tolerance `tol` of the local solve's
+    /// convergence test ([`LocalConfig::tol`]): their root mean square over the targets within
+    /// `tol` of the targets' size. Cheap (no Jacobian): asked first.
+    pub(crate) fn within_tol(&self, norm: f64, tol: f64) -> bool {
+        norm / (self.targets() as f64).sqrt() <= tol * self.scale
+    }
+
+    /// Whether residuals of norm `norm`, evaluated as `e` at the unknowns `z`, are within their
+    /// rounding, the other half of the local solve's convergence test: their root mean square
+    /// within [`ROUNDING`] units in the last place of the largest magnitude they are computed
+    /// from ([`ProblemOf::resolution`], a pass over the Jacobian), which no step can lower.
+    /// `row_weight` is [`ProblemOf::row_weights`].
+    pub(crate) fn within_rounding(&self, norm: f64, e: &Eval<Q<K>>, z: &[f64], row_weight: &[f64]) -> bool {
+        norm / (self.targets() as f64).sqrt() <= ROUNDING * f64::EPSILON * self.resolution(e, z, row_weight)
+    }
+
+    /// Each residual's weight, in the order of one target's residuals (its channels', a point's
+    /// twice).
+    pub(crate) fn row_weights(&self) -> Vec<f64> {
+        self.channels.iter().flat_map(|&(c, w)| std::iter::repeat_n(w, channel_width(c))).collect()
+    }
+
     /// The largest magnitude a residual of `e` (at the unknowns `z`) is computed from, in the
     /// residuals' weighted units: its target's, and each unknown's share `|dr/dz_i z_i|`, what
     /// the residual changes by for a relative change of that unknown (a pivot 1e4 from the

@@ -330,8 +330,28 @@ impl Search {
             })
             .collect();
         let mut fit = batch(&pop);
-        let done = self.local.tol * problem.scale;
-        let evaluations = de.population + evolve(&mut pop, &mut fit, (&lo, &hi), de, &mut rng, done, batch);
+        // The early stop is the local solve's convergence test on the best member: its residuals
+        // within `tol` of the targets' size, or within their rounding (judged on its Jacobian, an
+        // evaluation more, once per best member). `tol` alone, with no floor, was never met by
+        // an exact fit 1e4 from the origin, whose residuals are the rounding of values of that
+        // size: the evolution ran every generation there.
+        let row_weight = problem.row_weights();
+        let (mut judged, mut judgements) = (None::<Vec<f64>>, 0usize);
+        let done = |pop: &[Vec<f64>], fit: &[f64]| {
+            let finite = (0..fit.len()).filter(|&k| fit[k].is_finite());
+            let Some(k) = finite.min_by(|&a, &b| fit[a].total_cmp(&fit[b])) else { return false };
+            if problem.within_tol(fit[k], self.local.tol) {
+                return true;
+            }
+            if judged.as_ref() == Some(&pop[k]) {
+                return false;
+            }
+            judged = Some(pop[k].clone());
+            judgements += 1;
+            problem.evaluate(&pop[k], None).is_ok_and(|e| problem.within_rounding(fit[k], &e, &pop[k], &row_weight))
+        };
+        let evolved = evolve(&mut pop, &mut fit, (&lo, &hi), de, &mut rng, done, batch);
+        let evaluations = de.population + evolved + judgements;
         let chosen = best(&fit, de.polish);
         let mut found: Vec<Result<Candidate, Refused>> =
             chosen.iter().map(|&k| self.solve(problem, pop[k].clone(), Origin::Evolution, island)).collect();
