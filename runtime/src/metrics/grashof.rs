@@ -71,7 +71,8 @@ impl fmt::Display for GrashofClass {
 pub struct Grashof {
     /// Grashof, non-Grashof or change point.
     pub class: GrashofClass,
-    /// The shortest link (the first of ground, input, coupler, output on a tie).
+    /// The shortest link (the first of ground, input, coupler, output on a tie; lengths equal to
+    /// within rounding tie, as for the class).
     pub shortest: Link,
     /// `(s + l) - (p + q)` divided by the sum of the four lengths: negative for Grashof
     /// linkages, zero at a change point, positive for triple rockers (a scale-free margin).
@@ -134,8 +135,11 @@ pub fn grashof(links: FourBarLinks) -> Result<Grashof, Error> {
              so the loop closes only lying flat, every link on one line"
         )));
     }
-    let (k_short, short) =
-        lengths.iter().copied().enumerate().fold((0, f64::MAX), |m, (k, v)| if v < m.1 { (k, v) } else { m });
+    let short = lengths.iter().copied().fold(f64::MAX, f64::min);
+    // The first link within rounding of the shortest, as every comparison here takes lengths
+    // equal: the first strictly shortest named a link one rounding shorter than the first of a
+    // tie (the coupler `0.3 - 0.2` of a kite, where in millimetres the input 100 is named).
+    let k_short = lengths.iter().position(|&v| v <= short + tol).unwrap_or(0);
     let shortest = [Link::Ground, Link::Input, Link::Coupler, Link::Output][k_short];
     let excess = short + longest - (sum - short - longest);
     // A link pivoted to the ground turns fully when the opposite dyad closes at both ends of
@@ -315,6 +319,31 @@ mod tests {
         assert!(kite.coupler_turns, "{kite:?}");
         let parallelogram = grashof(FourBarLinks { ground: 3.0, input: 1.0, coupler: 3.0, output: 1.0 }).unwrap();
         assert!(!parallelogram.coupler_turns, "{parallelogram:?}");
+    }
+
+    /// A tie for the shortest link names the first of the tied links in any unit, ties within
+    /// rounding included (as every other comparison of the classification takes them): the
+    /// kite of input and coupler 100 mm, ground and output 300 mm names the input; declared in
+    /// metres from its joints' coordinates, the coupler `0.3 - 0.2` is one rounding shorter
+    /// than the input `0.1`, and the coupler was named (the output `0.4 - 0.1` is one rounding
+    /// longer than the ground). The rest of the classification was the same.
+    #[test]
+    fn a_tie_within_rounding_names_the_first_shortest_link() {
+        let mm = grashof(FourBarLinks { ground: 300.0, input: 100.0, coupler: 100.0, output: 300.0 }).unwrap();
+        let (input, coupler) = (0.1, 0.3 - 0.2);
+        assert!(coupler < input, "the coupler is one rounding shorter in metres");
+        let m = grashof(FourBarLinks { ground: 0.3, input, coupler, output: 0.4 - 0.1 }).unwrap();
+        assert_eq!((mm.class, mm.shortest), (GrashofClass::ChangePoint, Link::Input), "{mm:?}");
+        assert_eq!((m.class, m.shortest), (mm.class, mm.shortest), "{m:?}");
+        assert_eq!(
+            (m.input_turns, m.output_turns, m.coupler_turns),
+            (mm.input_turns, mm.output_turns, mm.coupler_turns)
+        );
+        // A parallelogram whose ground is computed `0.1 + 0.2`, one rounding above its coupler
+        // 0.3, and whose output 0.1 is one rounding above its input `0.3 - 0.2`: the input.
+        let p = grashof(FourBarLinks { ground: 0.1 + 0.2, input: 0.3 - 0.2, coupler: 0.3, output: 0.1 }).unwrap();
+        let q = grashof(FourBarLinks { ground: 0.3, input: 0.1, coupler: 0.3, output: 0.3 - 0.2 }).unwrap();
+        assert_eq!((p.shortest, q.shortest), (Link::Input, Link::Input), "{p:?} {q:?}");
     }
 
     #[test]
