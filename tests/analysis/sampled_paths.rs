@@ -150,3 +150,43 @@ fn invalid_paths_and_parameters_are_typed_errors() {
     let e = Column::<FiveBar>::named("pc.z").unwrap_err().to_string();
     assert!(e.contains("pc.x, pc.y, spread") && e.contains("th1, th2"), "{e}");
 }
+
+kinloop::mechanism! {
+    /// Two sliders `u` and `v` (lengths) driving a point `(x, y)` with `y = (u^2 + v^2) / l`,
+    /// written as `(u / l) u + (v / l) v` so that no length is squared: every term and analog
+    /// along a path is of the order of the size in any unit of length (the second analog is
+    /// `2 |d|^2 / l` for a path's direction `d`), and the mechanism can be scaled to any size.
+    pub struct SliderSquares {
+        params l;
+        inputs u, v;
+        unknowns x = 0, y = 0;
+        loop p: (x, y) == (u, u / l * u + v / l * v);
+    }
+}
+
+/// A path through two length inputs at every size from 1 to `1e-300`: from `(1, 2) k` to
+/// `(3, -1) k`, where `u^2 + v^2 = (5 - 8 s + 13 s^2) k^2` has its minimum at the fraction
+/// `s = 4/13` of the path, `y = 49/13 k` there. The path's parameter was the inputs' offset
+/// dotted with the path's run over the run's square, which underflows below about `1e-154`:
+/// at `1e-160` the fractions were off by 3e-4 of themselves (subnormal), at `1e-200` and below
+/// NaN, and the analyses lost the minimum (an error, or none found over NaN samples). Each
+/// sample's fraction is `j / 20` to rounding, and the minimum lies at `4/13` with `y = 49/13 k`
+/// (the analog is linear in `s`, its root found to rounding; the value exact to rounding).
+#[test]
+fn a_path_through_tiny_length_inputs_keeps_its_parameter() {
+    for k in [1.0, 1e-100, 1e-160, 1e-200, 1e-300] {
+        let m = SliderSquares { l: k };
+        let (from, to) = ([k, 2.0 * k], [3.0 * k, -k]);
+        let run = Sampled::path(&m, from, to, 21, m.guess(from)).unwrap();
+        for (j, s) in run.path_values().iter().enumerate() {
+            assert!((s - j as f64 / 20.0).abs() <= 1e-15, "size {k:e}: sample {j} at {s}");
+        }
+        let found = run.extremes(SliderSquares::COL.y).unwrap();
+        let [min] = found.as_slice() else { panic!("size {k:e}: {found:?}") };
+        assert_eq!(min.kind, kinloop::analysis::Extreme::Min, "size {k:e}: {min:?}");
+        assert!((min.x() - 4.0 / 13.0).abs() <= 1e-14, "size {k:e}: {min:?}");
+        assert!((min.value() / k - 49.0 / 13.0).abs() <= 1e-14, "size {k:e}: {min:?}");
+        let range = run.range(SliderSquares::COL.y).unwrap();
+        assert_eq!(range.min, min.at, "size {k:e}");
+    }
+}

@@ -12,6 +12,7 @@ use crate::events::EventKind;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
+use crate::number::pow2_at_most;
 use crate::paths::collected::check_collected;
 use crate::paths::config::SweepConfig;
 use crate::paths::curve::{Metric, Path};
@@ -63,9 +64,15 @@ impl<V: Store> Line<V> {
         match self.along {
             Some(k) => x[k],
             None => {
+                // The run and the offset in units of the power of two at most the run's largest
+                // component (exact): their products, squares of lengths, underflowed for inputs
+                // below about 1e-154 of their unit (a path through two sliders of a tiny
+                // mechanism), and the fractions came out subnormal-rounded, then NaN.
                 let ni = self.ni();
-                let delta = |i: usize| self.to[i] - self.from[i];
-                let off = |i: usize| x[i] - self.from[i];
+                let largest = (0..ni).map(|i| (self.to[i] - self.from[i]).abs()).fold(0.0, f64::max);
+                let unit = if largest > 0.0 && largest.is_finite() { pow2_at_most(largest) } else { 1.0 };
+                let delta = |i: usize| (self.to[i] - self.from[i]) / unit;
+                let off = |i: usize| (x[i] - self.from[i]) / unit;
                 (0..ni).map(|i| off(i) * delta(i)).sum::<f64>() / (0..ni).map(|i| delta(i) * delta(i)).sum::<f64>()
             }
         }
