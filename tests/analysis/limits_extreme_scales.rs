@@ -342,3 +342,53 @@ fn a_gear_levers_dwells_at_every_scale() {
         }
     }
 }
+
+kinloop::mechanism! {
+    /// The offset slider-crank with its crank's pivot at `(ax, 0)`: the same motion wherever it
+    /// stands, its slider's position moved by `ax`.
+    pub struct PlacedSliderCrank {
+        params ax, r, l, e;
+        input phi;
+        unknowns psi = 0, x = ax - l;
+        loop oabo: (ax, 0) + r @ phi == (x, e) + l @ psi;
+    }
+}
+
+/// A slider-crank a millimetre across (crank 1 mm, rod 3 mm, offset 0.5 mm, in metres) wherever
+/// it stands, up to the Earth's radius (6.4e6 m, a mechanism in Earth-centred coordinates) and
+/// 1e9 m from the origin: the slider's dead centres are located at the closed form's crank
+/// angles (`x - ax` is `-sqrt((l -+ r)^2 - e^2)` where crank and rod are collinear), and the
+/// slider never rests. A column was judged to stand still where its values stayed within
+/// `PERIODIC_TOLERANCE` (1e-9) of their magnitude, 6.4e-3 m here, more than the stroke of 2 mm:
+/// the slider had no extremes, its range was the samples' (its minimum 0.036 rad off), and the
+/// whole turn was one rest. Its velocity analog, which no offset enlarges, says it moves.
+///
+/// Tolerances: the dead centres are roots of the analog, located to about the solve's accuracy
+/// over the acceleration analog (`EXTREME_TOL`); their values within a few roundings of the
+/// position (`8 ulp(ax)`, 7.5e-9 m at the Earth's radius) and the solve's `tol::SOLVE` of the size.
+#[test]
+fn a_small_slider_crank_far_from_the_origin_has_its_dead_centres() {
+    let (r, l, e): (f64, f64, f64) = (1e-3, 3e-3, 5e-4);
+    let near = -((l - r) * (l - r) - e * e).sqrt();
+    let far = -((l + r) * (l + r) - e * e).sqrt();
+    let exact = [(Extreme::Min, e.atan2(far), far), (Extreme::Max, (-e).atan2(-near) + TAU, near)];
+    for ax in [0.0, 1.0, 6.4e6, 1e9] {
+        let m = PlacedSliderCrank { ax, r, l, e };
+        let turn = m.sampled(0.1, 0.1 + TAU, 73, &m.guess(0.1)).unwrap();
+        let found = turn.extremes(PlacedSliderCrank::COL.x).unwrap();
+        assert_eq!(found.len(), 2, "at {ax:e}: {found:?}");
+        let tol = 8.0 * f64::EPSILON * ax + tol::SOLVE * l;
+        for (got, &(kind, x, value)) in found.iter().zip(&exact) {
+            assert_eq!(got.kind, kind, "at {ax:e}: {got:?}");
+            assert!((got.x() - x).abs() <= EXTREME_TOL, "at {ax:e}: {got:?} against {x}");
+            assert!((got.value() - (ax + value)).abs() <= tol, "at {ax:e}: {got:?} against {}", ax + value);
+        }
+        // The range is the extremes' (at 1e9 a sample 0.004 rad from the maximum ties with it to
+        // a unit in the last place, 1.2e-7 m, more than the curvature's 5e-9 m between them).
+        let range = turn.range(PlacedSliderCrank::COL.x).unwrap();
+        assert_eq!(range.extremes, found, "at {ax:e}");
+        assert!((range.min.value - found[0].value()).abs() <= tol, "at {ax:e}: {range:?}");
+        assert!((range.max.value - found[1].value()).abs() <= tol, "at {ax:e}: {range:?}");
+        assert!(turn.rests(PlacedSliderCrank::COL.x).unwrap().is_empty(), "at {ax:e}");
+    }
+}

@@ -145,6 +145,15 @@ fn least_search_samples(natural: f64) -> usize {
     (l.ceil() as usize + 1).max(3)
 }
 
+/// The value of column `c` in the state `st`.
+fn column_value<S: KinState>(c: ColumnIndex, st: &S) -> f64 {
+    match c {
+        ColumnIndex::Input(i) => st.x()[i],
+        ColumnIndex::Unknown(u) => st.q()[u],
+        ColumnIndex::Output(o) => st.out()[o],
+    }
+}
+
 /// About the bytes a [`SampledOf`] over `k` keeps per sample, and that its analyses hold per
 /// sample beside it while they search: the state (its own size and what it holds on the heap)
 /// and its path parameter, then a search's grid entry (a state's size, borrowed or not) and
@@ -819,10 +828,42 @@ impl<K: Kernel> SampledOf<K> {
     /// start is judged. Its velocity analog is then rounding too, and the sign changes of that
     /// noise are no extremes: a parallelogram's coupler angle, zero at every crank angle, had
     /// thirty "extremes" a turn, at crank angles the rounding chose.
+    ///
+    /// And its velocity analog says so too, where its kind has a scale of motion (see
+    /// [`SampledOf::motion_scale`]): the analog's largest magnitude over the range's length
+    /// within the same tolerance of it. The values' tolerance grows with their magnitude, and a
+    /// small mechanism far from the origin moves by less than it (a slider-crank a millimetre
+    /// across in Earth-centred coordinates, 6.4e6 m out, strokes 2 mm where the tolerance is
+    /// 6.4 mm): its slider "stood still", without extremes, one rest a turn. The analogs are
+    /// free of the offset, and a column that stands still has analogs at their rounding.
     fn stands_still(&self, c: ColumnIndex, jets: &[Jet], corners: &[extremes::Corner]) -> bool {
         let values = || jets.iter().chain(corners.iter().map(|k| &k.at)).map(|j| j.value);
         let (lo, hi) = values().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        hi - lo <= unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, values())
+        if hi - lo > unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, values()) {
+            return false;
+        }
+        let Some(scale) = self.motion_scale(c) else { return true };
+        let (first, last) = (self.s[0], self.s[self.s.len() - 1]);
+        // Not at the points beside a singular crossing, where the positions are pinned only to
+        // about 1e-10 and the analogs not to be trusted (a parallelogram's coupler angle has
+        // analogs of 7e-5 a millionth of a radian from its change points, 1e-14 elsewhere).
+        let beside = |i: usize| corners.iter().any(|k| i == k.after || i == k.after + 1);
+        let analog = (0..jets.len()).filter(|&i| !beside(i)).map(|i| jets[i].d1.abs()).fold(0.0, f64::max);
+        analog * (last - first) <= unbalance::PERIODIC_TOLERANCE * scale
+    }
+
+    /// How far a column of `c`'s kind moves over the range when it moves at all, the scale
+    /// against which [`SampledOf::stands_still`] judges its analog: `pi` for an angle, 1 for a
+    /// pure number, the mechanism's size for a length (the largest range of any length column
+    /// over the samples: its offset from the origin left out). `None` for other kinds, and for
+    /// a length where no length column moves: the values alone judge those.
+    fn motion_scale(&self, c: ColumnIndex) -> Option<f64> {
+        match column_kind(&self.k, c) {
+            QuantityKind::Angle => Some(std::f64::consts::PI),
+            QuantityKind::Dimensionless => Some(1.0),
+            QuantityKind::Length => Some(self.length_range()).filter(|&v| v > 0.0),
+            _ => None,
+        }
     }
 
     /// Column `c` as a search between the samples sees it ([`SampledOf::extremes`]), handed to
@@ -1067,21 +1108,33 @@ impl<K: Kernel> SampledOf<K> {
     /// The largest magnitude of any length column (input, unknown or output) over the samples:
     /// the size of the mechanism in its own unit of length (0 without length columns).
     fn length_scale(&self) -> f64 {
+        self.length_columns()
+            .flat_map(|c| self.states.iter().map(move |st| column_value(c, st).abs()))
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
+    }
+
+    /// The largest range (largest less smallest value) of any length column over the samples:
+    /// how far the mechanism's lengths move, wherever it stands (0 without length columns).
+    fn length_range(&self) -> f64 {
+        self.length_columns()
+            .map(|c| {
+                let values = self.states.iter().map(|st| column_value(c, st)).filter(|v| v.is_finite());
+                let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+                if hi >= lo { hi - lo } else { 0.0 }
+            })
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
+    }
+
+    /// The length columns (inputs, unknowns, outputs) of the kernel.
+    fn length_columns(&self) -> impl Iterator<Item = ColumnIndex> + '_ {
         let d = self.k.dims();
-        let columns = (0..d.ni())
+        (0..d.ni())
             .map(ColumnIndex::Input)
             .chain((0..d.n()).map(ColumnIndex::Unknown))
             .chain((0..d.no()).map(ColumnIndex::Output))
-            .filter(|&c| column_kind(&self.k, c) == QuantityKind::Length);
-        let value = |c: ColumnIndex, st: &KinOf<K>| match c {
-            ColumnIndex::Input(i) => st.x()[i],
-            ColumnIndex::Unknown(u) => st.q()[u],
-            ColumnIndex::Output(o) => st.out()[o],
-        };
-        columns
-            .flat_map(|c| self.states.iter().map(move |st| value(c, st).abs()))
-            .filter(|v| v.is_finite())
-            .fold(0.0, f64::max)
+            .filter(|&c| column_kind(&self.k, c) == QuantityKind::Length)
     }
 
     /// Fourier coefficients of a column up to `harmonics`, the sweep being one period (`n + 1`
