@@ -12,6 +12,9 @@
 /// The help for the character `c`, which starts no token, or `None` where there is none to give
 /// (a character that looks like no operator).
 pub(crate) fn help(c: char) -> Option<String> {
+    if let Some(what) = invisible(c) {
+        return Some(format!("U+{:04X} ({what}) is invisible in most editors: remove it", c as u32));
+    }
     let looks_like = |ascii: &str, write: &str| format!("`{c}` (U+{:04X}) looks like `{ascii}`; {write}", c as u32);
     let same = |ascii: &str| looks_like(ascii, &format!("write `{ascii}`"));
     // No comparison in a declaration: an equation is `lhs == rhs`, a bound `min`, `max` or
@@ -142,6 +145,53 @@ pub fn latin_lookalike(c: char) -> Option<(char, &'static str)> {
     };
     let script = if ('\u{370}'..='\u{3ff}').contains(&c) { "Greek" } else { "Cyrillic" };
     Some((latin, script))
+}
+
+/// What a character most editors do not show is, where `c` is one: a zero-width space or
+/// joiner, a byte order mark (which only starts a file), a soft hyphen, a control of the text's
+/// direction, a variation selector. Between tokens the compiler refuses one as an unknown start
+/// of token, naming a character that cannot be seen; the joiners and the variation selectors
+/// continue a name, which is then another name that prints alike.
+pub(crate) fn invisible(c: char) -> Option<&'static str> {
+    Some(match c {
+        '\u{ad}' => "soft hyphen",
+        '\u{200b}' => "zero width space",
+        '\u{200c}' => "zero width non-joiner",
+        '\u{200d}' => "zero width joiner",
+        '\u{2060}' => "word joiner",
+        '\u{2061}'..='\u{2064}' => "invisible operator",
+        '\u{feff}' => "zero width no-break space, the byte order mark",
+        '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' => "control of the text's direction",
+        '\u{180b}'..='\u{180d}' | '\u{180f}' | '\u{fe00}'..='\u{fe0f}' | '\u{e0100}'..='\u{e01ef}' => {
+            "variation selector"
+        }
+        _ => return None,
+    })
+}
+
+/// `name` as it reads: each letter [`latin_lookalike`] knows replaced by the Latin one it looks
+/// like and each character most editors do not show ([`invisible`]) left out, with those
+/// characters described (`` `а` (U+0430) is a Cyrillic letter that looks like the Latin `a` ``,
+/// `the name holds U+200D (zero width joiner), which most editors do not show`, each once); `None`
+/// where `name` holds none.
+pub(crate) fn latin_name(name: &str) -> Option<(String, String)> {
+    let mut said: Vec<String> = Vec::new();
+    let mut latin = String::with_capacity(name.len());
+    for c in name.chars() {
+        let this = if let Some((l, script)) = latin_lookalike(c) {
+            latin.push(l);
+            format!("`{c}` (U+{:04X}) is a {script} letter that looks like the Latin `{l}`", c as u32)
+        } else if let Some(what) = invisible(c) {
+            format!("the name holds U+{:04X} ({what}), which most editors do not show", c as u32)
+        } else {
+            latin.push(c);
+            continue;
+        };
+        if !said.contains(&this) {
+            said.push(this);
+        }
+    }
+    (!said.is_empty()).then(|| (latin, said.join(", ")))
 }
 
 /// The help for the vulgar fraction `c`, `numerator / denominator`.

@@ -220,8 +220,10 @@ impl Model {
     /// the macro's front end, checks, structure analysis and plan, then the run-time program.
     pub fn read(name: &str, text: &str) -> Result<Model, ReadError> {
         let tokens = source::tokens(name, text).map_err(ReadError::Rejected)?;
+        // Kept for the messages of a rejection, which look at the names (a clone shares them).
+        let kept = tokens.clone();
         let planned = kinloop_codegen::plan_declaration(tokens)
-            .map_err(|e| ReadError::Rejected(Diagnostics::from_syn(name, text, e)))?;
+            .map_err(|e| ReadError::Rejected(Diagnostics::from_syn(name, text, e, &kept)))?;
         let warnings = Diagnostics::warnings(name, text, &planned.warnings);
         let mut m = Model::from_planned(planned)?;
         m.warnings = warnings;
@@ -235,8 +237,10 @@ impl Model {
     /// rejects.
     pub fn decomposition_of(name: &str, text: &str) -> Result<String, ReadError> {
         let tokens = source::tokens(name, text).map_err(ReadError::Rejected)?;
+        // Kept for the messages of a rejection, which look at the names (a clone shares them).
+        let kept = tokens.clone();
         let planned = kinloop_codegen::plan_declaration(tokens)
-            .map_err(|e| ReadError::Rejected(Diagnostics::from_syn(name, text, e)))?;
+            .map_err(|e| ReadError::Rejected(Diagnostics::from_syn(name, text, e, &kept)))?;
         Ok(kinloop_codegen::decomposition(&planned))
     }
 

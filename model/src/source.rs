@@ -24,7 +24,11 @@ pub const MAX_SOURCE_BYTES: usize = 1 << 20;
 pub struct Diagnostic {
     /// The message, as `mechanism!` reports it. Where a character starts no token (`−`, `°`),
     /// its first line is the compiler's and a `help:` line after it says what to write: the
-    /// compiler prints its own help apart from the message.
+    /// compiler prints its own help apart from the message; for a character most editors do
+    /// not show (a zero-width space, a byte order mark inside the text), the help names it. So
+    /// does a `help:` line after a message at a name that holds, or whose look-alike holds,
+    /// letters of another script that look like Latin ones (`а`, U+0430, for `a`) or a joiner
+    /// no editor shows: which characters, and what to write.
     pub message: String,
     /// Byte range in the text (empty when the message is about the whole text).
     pub range: Range<usize>,
@@ -91,9 +95,26 @@ impl Diagnostics {
     }
 
     /// The messages of a `syn::Error` (it holds several when the macro found several mistakes),
-    /// each at its span.
-    pub(crate) fn from_syn(name: &str, text: &str, error: syn::Error) -> Diagnostics {
-        let items = error.into_iter().map(|e| at_span(text, e.span(), e.to_string())).collect();
+    /// each at its span, for the declaration whose tokens are `tokens`. A message at a name
+    /// that holds letters of another script looking like Latin ones (`а`, U+0430, Cyrillic, for
+    /// `a`) or a character no editor shows (a zero width joiner), or at a name whose look-alike
+    /// is declared instead (`a` used, `а` declared), gets a `help:` line naming those characters
+    /// and what to write ([`LookAlikes::help`]): the two names print alike, so "unknown name
+    /// `a`" beside a declared `а` left the author nothing to see.
+    pub(crate) fn from_syn(name: &str, text: &str, error: syn::Error, tokens: &TokenStream) -> Diagnostics {
+        // An ASCII text (nearly every one) has no name that reads as another.
+        let names = if text.is_ascii() { Vec::new() } else { names(text, tokens) };
+        let look_alikes = LookAlikes::of(&names);
+        let items = error
+            .into_iter()
+            .map(|e| {
+                let mut d = at_span(text, e.span(), e.to_string());
+                if let Some(help) = look_alikes.help(&d) {
+                    d.message = format!("{}\nhelp: {help}", d.message);
+                }
+                d
+            })
+            .collect();
         Diagnostics { level: Level::Error, name: name.to_string(), text: text.to_string(), items }
     }
 
@@ -220,6 +241,83 @@ fn at_span(text: &str, span: proc_macro2::Span, message: String) -> Diagnostic {
     // A span from another text (never made here) or past the end: the whole text.
     let range = if range.start <= range.end && range.end <= text.len() { range } else { 0..0 };
     Diagnostic { message, range, line: start.line.max(1), column: start.column + 1 }
+}
+
+/// A name of a declaration's text at one place.
+struct Name {
+    /// The name, in Unicode Normalization Form C (as the front end reads it).
+    name: String,
+    /// Where it is written.
+    place: Diagnostic,
+}
+
+/// Every name (identifier) of `tokens`, the tokens of `text`, at each of its places, in the
+/// order of the tokens. Without recursion, as [`nfc_identifiers`]: the brackets of a rejected
+/// text may nest as deep as the text allows.
+fn names(text: &str, tokens: &TokenStream) -> Vec<Name> {
+    use proc_macro2::TokenTree;
+    let mut out = Vec::new();
+    let mut stack = vec![tokens.clone().into_iter()];
+    while let Some(top) = stack.last_mut() {
+        match top.next() {
+            Some(TokenTree::Group(group)) => stack.push(group.stream().into_iter()),
+            Some(TokenTree::Ident(ident)) => {
+                out.push(Name { name: ident.to_string(), place: at_span(text, ident.span(), String::new()) })
+            }
+            Some(_) => {}
+            None => {
+                stack.pop();
+            }
+        }
+    }
+    out
+}
+
+/// The names of a rejected text that read as others, found once for all its messages.
+struct LookAlikes<'a> {
+    /// Every name at each of its places, in the order of the text.
+    names: &'a [Name],
+    /// The names holding characters that make them read as another: each, as it reads
+    /// (`confusables::latin_name`), and what those characters are. Empty in nearly every text.
+    reading: Vec<(&'a Name, String, String)>,
+    /// The names as written, where `reading` is not empty.
+    written: std::collections::HashSet<&'a str>,
+}
+
+impl<'a> LookAlikes<'a> {
+    fn of(names: &'a [Name]) -> LookAlikes<'a> {
+        let reading: Vec<(&Name, String, String)> = names
+            .iter()
+            .filter(|n| !n.name.is_ascii())
+            .filter_map(|n| crate::confusables::latin_name(&n.name).map(|(latin, said)| (n, latin, said)))
+            .collect();
+        let written = if reading.is_empty() { Default::default() } else { names.iter().map(|n| &*n.name).collect() };
+        LookAlikes { names, reading, written }
+    }
+
+    /// The help for a message `d` that points at exactly one of the text's names, where that
+    /// name holds letters that look like Latin ones or characters no editor shows (what they
+    /// are, and the name as it reads to write, where the text or the message has it), or where
+    /// another name of the text reads as this one but for such characters (that name's place,
+    /// and what to write there). `None` otherwise: most messages, and every one of an ASCII
+    /// text.
+    fn help(&self, d: &Diagnostic) -> Option<String> {
+        if self.reading.is_empty() || d.range.is_empty() {
+            return None;
+        }
+        // The names are in the order of the text: the one at the message's place, if any.
+        let k = self.names.partition_point(|n| n.place.range.start < d.range.start);
+        let here = self.names.get(k).filter(|n| n.place.range == d.range)?;
+        if let Some((_, latin, said)) = self.reading.iter().find(|(n, ..)| n.name == here.name) {
+            let known = self.written.contains(latin.as_str()) || d.message.contains(&format!("`{latin}`"));
+            return Some(if known { format!("{said}; write `{latin}`") } else { said.clone() });
+        }
+        let (other, _, said) = self.reading.iter().find(|(_, latin, _)| *latin == here.name)?;
+        Some(format!(
+            "`{}` at line {}, column {} is not `{}`: {said}; write `{}` there",
+            other.name, other.place.line, other.place.column, here.name, here.name
+        ))
+    }
 }
 
 /// The tokens of a declaration's text, or why it has none: too large, or a lexical error

@@ -325,6 +325,66 @@ fn a_greek_letter_is_told_the_name_that_spells_it_out() {
     assert_eq!(got, [(message, 5, 20)], "{text}");
 }
 
+/// A letter of another script that looks like a Latin one (`а`, U+0430, Cyrillic; a keyboard
+/// left on another layout, a name pasted from a document) is named with the letter it looks
+/// like, both where it is used and where the name it spells is used instead: the two names print
+/// alike, so the macro's "unknown name `а`" beside a declared `a` (or "unknown name `a`"
+/// beside a declared `а`) gave the author nothing to change.
+#[test]
+fn a_letter_that_looks_latin_is_named_with_what_to_write() {
+    let said = "`\u{430}` (U+0430) is a Cyrillic letter that looks like the Latin `a`";
+    let unknown = |name: &str| {
+        format!("unknown name `{name}` (declare it with `params`, `input`, `unknowns` or `let` before using it)")
+    };
+    let messages = |text: &str| -> Vec<(String, usize, usize)> {
+        let Err(ReadError::Rejected(d)) = Model::read("look_alike.kl", text) else { panic!("accepted: {text}") };
+        d.items.into_iter().map(|i| (i.message, i.line, i.column)).collect()
+    };
+    // Used: the letter, and the declared name to write.
+    let used =
+        "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == \u{430} * phi;\n}\n";
+    let help = format!("{}\nhelp: {said}; write `a`", unknown("\u{430}"));
+    assert_eq!(messages(used), [(help, 5, 16)]);
+    // Declared: at each use of the Latin name, the place of the declared one and what to write there.
+    let declared =
+        "pub struct S {\n    params \u{430} = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == a * phi;\n}\n";
+    let help = format!("{}\nhelp: `\u{430}` at line 2, column 12 is not `a`: {said}; write `a` there", unknown("a"));
+    assert_eq!(messages(declared), [(help, 5, 16)]);
+    // A keyword: the letter, and the keyword the message names.
+    let keyword = used.replace("\u{430} * phi", "a * phi").replace("eq e", "\u{435}q e");
+    let got = messages(&keyword);
+    let help = "help: `\u{435}` (U+0435) is a Cyrillic letter that looks like the Latin `e`; write `eq`";
+    assert!(got.len() == 1 && got[0].0.ends_with(help) && (got[0].1, got[0].2) == (5, 5), "{got:?}");
+}
+
+/// A character most editors do not show (a zero-width space, a byte order mark inside the text,
+/// as where two files were joined) is named and removed, not only escaped ("unknown start of
+/// token: \u{200b}" under a caret beneath nothing); and a joiner inside a name, which continues
+/// it, makes another name that prints as the one meant: the help says what it holds and what to
+/// write.
+#[test]
+fn an_invisible_character_is_named_with_what_to_write() {
+    let text = "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == a * phi;\n}\n";
+    let messages = |text: &str| -> Vec<(String, usize, usize)> {
+        let Err(ReadError::Rejected(d)) = Model::read("invisible.kl", text) else { panic!("accepted: {text}") };
+        d.items.into_iter().map(|i| (i.message, i.line, i.column)).collect()
+    };
+    let between = text.replace("a * phi", "a *\u{200b} phi");
+    let help =
+        "unknown start of token: \\u{200b}\nhelp: U+200B (zero width space) is invisible in most editors: remove it";
+    assert_eq!(messages(&between), [(help.to_string(), 5, 19)]);
+    // A second byte order mark: the first, which starts the file, is no character of the text.
+    let twice = format!("\u{feff}\u{feff}{text}");
+    let help = "unknown start of token: \\u{feff}\nhelp: U+FEFF (zero width no-break space, the byte order mark) is \
+                invisible in most editors: remove it";
+    assert_eq!(messages(&twice), [(help.to_string(), 1, 2)]);
+    let joined = text.replace("a * phi", "a * ph\u{200d}i");
+    let message = "unknown name `ph\u{200d}i`; did you mean `phi`? (declare it with `params`, `input`, `unknowns` or \
+                   `let` before using it)\nhelp: the name holds U+200D (zero width joiner), which most editors do not \
+                   show; write `phi`";
+    assert_eq!(messages(&joined), [(message.to_string(), 5, 20)]);
+}
+
 /// A declaration written on one long line (generated, or a table named by mistake) is shown
 /// around the place of each mistake, not whole: the rendering stays a few lines long, with
 /// the line and column of the whole text and the caret under the name.
