@@ -150,7 +150,10 @@ impl Diagnostics {
     /// generated one) is shown as a window around the place, marked `…` where cut: the whole
     /// line would repeat up to the megabyte of the text for every message.
     pub fn render(&self, color: bool) -> String {
-        let file = SimpleFile::new(self.name.as_str(), self.text.as_str());
+        // A byte order mark starting the text is no character of it (see `at_span`): the file
+        // shown is the text after it, each range moved back by its length.
+        let skip = if self.text.starts_with(BOM) { BOM.len_utf8() } else { 0 };
+        let file = SimpleFile::new(self.name.as_str(), &self.text[skip..]);
         let config = Config::default();
         let mut out = Vec::new();
         for d in &self.items {
@@ -162,7 +165,8 @@ impl Diagnostics {
                 Level::Error => Report::error(),
                 Level::Warning => Report::warning(),
             };
-            let report = report.with_message(&d.message).with_labels(vec![Label::primary((), d.range.clone())]);
+            let range = d.range.start.saturating_sub(skip)..d.range.end.saturating_sub(skip);
+            let report = report.with_message(&d.message).with_labels(vec![Label::primary((), range)]);
             let written = if color {
                 let mut w = term::termcolor::Ansi::new(&mut out);
                 term::emit(&mut w, &config, &file, &report)
@@ -201,7 +205,12 @@ impl Diagnostics {
     fn window(&self, d: &Diagnostic) -> Option<String> {
         let text = self.text.as_str();
         let start = d.range.start.min(text.len());
-        let line_start = text[..start].rfind('\n').map_or(0, |k| k + 1);
+        let mut line_start = text[..start].rfind('\n').map_or(0, |k| k + 1);
+        // A byte order mark starting the text is no character of its first line (`at_span`):
+        // not shown, and not counted before the caret.
+        if line_start == 0 && start >= BOM.len_utf8() && text.starts_with(BOM) {
+            line_start = BOM.len_utf8();
+        }
         let line_end = text[start..].find('\n').map_or(text.len(), |k| start + k);
         let line = text[line_start..line_end].trim_end_matches('\r');
         let chars = line.chars().count();
@@ -240,8 +249,15 @@ fn at_span(text: &str, span: proc_macro2::Span, message: String) -> Diagnostic {
     let range = span.byte_range();
     // A span from another text (never made here) or past the end: the whole text.
     let range = if range.start <= range.end && range.end <= text.len() { range } else { 0..0 };
-    Diagnostic { message, range, line: start.line.max(1), column: start.column + 1 }
+    // A byte order mark starting the text is no character of its first line: the compiler
+    // drops it before reading, and editors show no column for it. proc-macro2's lexer skips it
+    // but counts it, one column too many on line 1.
+    let bom = usize::from(start.line <= 1 && start.column > 0 && text.starts_with(BOM));
+    Diagnostic { message, range, line: start.line.max(1), column: start.column + 1 - bom }
 }
+
+/// The byte order mark, which may start a text (see [`at_span`]).
+const BOM: char = '\u{feff}';
 
 /// A name of a declaration's text at one place.
 struct Name {
@@ -427,6 +443,11 @@ fn rust_white_space(c: char) -> bool {
 /// string starts no comment.
 fn foreign_character(text: &str) -> Option<Diagnostic> {
     let mut scan = Scan { chars: text.char_indices().peekable(), line: 1, column: 1, last: None, before: None };
+    // A byte order mark starting the text takes no column (see `at_span`).
+    if text.starts_with(BOM) {
+        scan.next();
+        scan.column = 1;
+    }
     // Block comments nest in Rust; a line comment runs to the end of its line.
     let (mut depth, mut in_line_comment) = (0usize, false);
     while let Some((at, c)) = scan.next() {

@@ -373,16 +373,45 @@ fn an_invisible_character_is_named_with_what_to_write() {
     let help =
         "unknown start of token: \\u{200b}\nhelp: U+200B (zero width space) is invisible in most editors: remove it";
     assert_eq!(messages(&between), [(help.to_string(), 5, 19)]);
-    // A second byte order mark: the first, which starts the file, is no character of the text.
+    // A second byte order mark: the first, which starts the file, is no character of the text
+    // and takes no column.
     let twice = format!("\u{feff}\u{feff}{text}");
     let help = "unknown start of token: \\u{feff}\nhelp: U+FEFF (zero width no-break space, the byte order mark) is \
                 invisible in most editors: remove it";
-    assert_eq!(messages(&twice), [(help.to_string(), 1, 2)]);
+    assert_eq!(messages(&twice), [(help.to_string(), 1, 1)]);
     let joined = text.replace("a * phi", "a * ph\u{200d}i");
     let message = "unknown name `ph\u{200d}i`; did you mean `phi`? (declare it with `params`, `input`, `unknowns` or \
                    `let` before using it)\nhelp: the name holds U+200D (zero width joiner), which most editors do not \
                    show; write `phi`";
     assert_eq!(messages(&joined), [(message.to_string(), 5, 20)]);
+}
+
+/// A text saved with a byte order mark (as some Windows editors save) is refused at the same
+/// lines and columns as without it, on its first line too: the compiler drops the mark before
+/// reading and editors give it no column, where the lexer counted it, one column too many. The
+/// rendering is the same, a long first line's window and caret included.
+#[test]
+fn a_byte_order_mark_takes_no_column() {
+    let items = |text: &str| -> (Vec<(String, usize, usize)>, String) {
+        let Err(ReadError::Rejected(d)) = Model::read("bom.kl", text) else { panic!("accepted: {text}") };
+        (d.items.iter().map(|i| (i.message.clone(), i.line, i.column)).collect(), d.render(false))
+    };
+    let long = format!("pub strukt S {{ params a = 1; {} }}", "let x = a; ".repeat(20));
+    for text in [
+        // The front end's message at a name, the lexer's at a bracket, the reader's at a space.
+        "pub strukt S {\n}\n".to_string(),
+        "pub struct S { params a = (1; }".to_string(),
+        "pub struct S {\u{a0}params a = 1; }".to_string(),
+        "pub struct S {\n    params a = 1;\n    input phi;\n    unknowns x = 0;\n    eq e: x == b * phi;\n}\n"
+            .to_string(),
+        long,
+    ] {
+        let (plain, plain_render) = items(&text);
+        let (marked, marked_render) = items(&format!("\u{feff}{text}"));
+        assert_eq!(marked, plain, "{text}");
+        assert_eq!(marked_render.replace("\u{feff}", ""), plain_render, "{text}");
+    }
+    assert_eq!(items("\u{feff}pub strukt S {\n}\n").0[0].2, 5);
 }
 
 /// A declaration written on one long line (generated, or a table named by mistake) is shown
