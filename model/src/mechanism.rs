@@ -267,6 +267,10 @@ impl Info {
                 block_error(BlockFailure::InvalidConfig { field }, *self.location(x, None))
             }
             StepError::ImpreciseParam { param, value, bound } => imprecise_param(&self.name, &param, value, bound),
+            // A parameter or an input not finite, named by `Model::solve`: the compiled error.
+            e @ StepError::NotFinite { .. } => {
+                self.bad_values(m, x, None).unwrap_or_else(|| Error::InvalidArgument(e.to_string()))
+            }
             StepError::NonFinitePosition { unknown, value } => {
                 self.bad_values(m, x, None).unwrap_or_else(|| Error::NonFinite {
                     what: Quantity::Position,

@@ -70,6 +70,16 @@ pub enum StepError {
         /// The bound.
         bound: f64,
     },
+    /// A parameter or an input of [`Model::solve`] is not finite: what the compiled `solve`
+    /// names (`Error::NonFinite`) before a block fails on it.
+    NotFinite {
+        /// `"parameter"` or `"input"`.
+        what: &'static str,
+        /// Its name.
+        name: String,
+        /// Its value.
+        value: f64,
+    },
     /// A block failed.
     Block {
         /// The block's index in solve order.
@@ -99,6 +109,9 @@ impl fmt::Display for StepError {
                 "parameter `{param}` is an angle of {value:e} rad, beyond {bound:e} rad, the largest angle \
                  solved to the residual tolerance; reduce it by whole turns"
             ),
+            StepError::NotFinite { what, name, value } => {
+                write!(f, "{what} `{name}` is not finite ({value}): give it a finite value")
+            }
             StepError::Block { block, failure } => {
                 write!(f, "block {block}: {failure} (`Model::explain` names its unknowns and equations)")
             }
@@ -973,12 +986,20 @@ impl Model {
 
     /// [`Model::kinematics`] from the declared initial guess with the default configuration
     /// (the compiled mechanism's `solve`). An angle parameter beyond the configuration's
-    /// `largest_precise_angle` is [`StepError::ImpreciseParam`], as the compiled `solve` refuses it.
+    /// `largest_precise_angle` is [`StepError::ImpreciseParam`], as the compiled `solve` refuses it;
+    /// a parameter or an input not finite is [`StepError::NotFinite`], named as the compiled
+    /// `solve` names it (the step's own error would be the first block's, failing on it).
     pub fn solve(&mut self, x: &[f64]) -> Result<&State, StepError> {
         let bound = NewtonConfig::default().largest_precise_angle();
         if let Some(k) = self.angle_param_beyond(bound) {
             let (param, value) = (self.params[k].clone(), self.param_values[k].unwrap_or(f64::NAN));
             return Err(StepError::ImpreciseParam { param, value, bound });
+        }
+        // Parameters first, then inputs, as the compiled step looks for a bad value.
+        let params = self.params.iter().zip(&self.param_values).filter_map(|(p, v)| Some(("parameter", p, (*v)?)));
+        let inputs = self.inputs.iter().zip(x).map(|(i, v)| ("input", i, *v));
+        if let Some((what, name, value)) = params.chain(inputs).find(|(.., v)| !v.is_finite()) {
+            return Err(StepError::NotFinite { what, name: name.clone(), value });
         }
         let mut guess = vec![0.0; self.unknowns.len()];
         self.guess(x, &mut guess)?;

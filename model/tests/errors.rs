@@ -261,6 +261,36 @@ fn a_non_finite_parameter_is_named_first() {
     assert_eq!(name_of(&e), "b");
 }
 
+/// `Model::solve` with a parameter or an input not finite names it, as the compiled `solve`
+/// does (`Error::NonFinite`), parameters first: its error was the first block's, failing on the
+/// value ("block 0: a value of the block's row 0 left its functions' domain", or "the terms of
+/// the block's row 0 are too large for f64" for an infinite length), which names neither the
+/// value nor what to mend. `Model::explain` of it is the compiled error.
+#[test]
+fn solve_names_a_parameter_or_input_not_finite_as_the_compiled_solve() {
+    use kinloop::Mechanism as _;
+    for (l, phi, what, name) in [
+        (f64::NAN, 0.3, "parameter", "l"),
+        (f64::INFINITY, f64::NAN, "parameter", "l"),
+        (3.0, f64::NEG_INFINITY, "input", "phi"),
+        (3.0, f64::NAN, "input", "phi"),
+    ] {
+        let compiled = fx::SliderCrank { r: 1.0, l, e: 0.4 };
+        let mut model = read(fx::SLIDER_CRANK_TEXT);
+        set(&mut model, &[("r", 1.0), ("l", l), ("e", 0.4)]);
+        let step = model.solve(&[phi]).map(|_| ()).unwrap_err();
+        let value = if what == "parameter" { l } else { phi };
+        let StepError::NotFinite { what: w, name: n, value: v } = &step else { panic!("{l} {phi}: {step:?}") };
+        assert_eq!((*w, n.as_str(), v.to_bits()), (what, name, value.to_bits()), "{step}");
+        assert_eq!(step.to_string(), format!("{what} `{name}` is not finite ({value}): give it a finite value"));
+        let solved = compiled.solve(phi).map(|_| ()).unwrap_err();
+        let guess = compiled.guess_flat(&[phi]);
+        let explained = model.explain(&[phi], &guess, &NewtonConfig::default(), step);
+        same(&solved, &explained);
+        assert!(matches!(explained, Error::NonFinite { .. }), "{explained:?}");
+    }
+}
+
 /// A position given to `kinematics_at` with an unknown not finite: the model's own record
 /// names the unknown (it said "singular position: pivot ratio 0"), `explain` calls it the
 /// given position (it said "initial guess"), and the model's kernel and the compiled one give
