@@ -70,8 +70,9 @@ pub enum StepError {
         /// The bound.
         bound: f64,
     },
-    /// A parameter or an input of [`Model::solve`] is not finite: what the compiled `solve`
-    /// names (`Error::NonFinite`) before a block fails on it.
+    /// A parameter or an input of [`Model::solve`] or [`Model::kinematics_at`] is not finite:
+    /// what the compiled `solve` and `kinematics_at_flat` name (`Error::NonFinite`) before a
+    /// block fails on it or the state computed from it is not finite.
     NotFinite {
         /// `"parameter"` or `"input"`.
         what: &'static str,
@@ -910,9 +911,13 @@ impl Model {
 
     /// Analogs and outputs at a position `q` the caller already solved (the compiled
     /// mechanism's `kinematics_at_flat`): the report carries the residual there, every block's
-    /// Jacobian is factorised from the graph. No allocation.
+    /// Jacobian is factorised from the graph. No allocation. A parameter or an input not finite
+    /// is [`StepError::NotFinite`], an unknown of `q` not finite [`StepError::NonFinitePosition`].
     pub fn kinematics_at(&mut self, x: &[f64], q: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
         self.check_at(x, q)?;
+        // A parameter or an input not finite first, as the compiled step's bad-value test
+        // names it: the state computed from it was "a value of the state is not finite".
+        self.finite_values(x)?;
         // The caller's position, not a solve's: a value not finite there is the caller's to
         // mend, where the step would call it a singular Jacobian or an equation not finite.
         if let Some(u) = q.iter().position(|v| !v.is_finite()) {
@@ -984,6 +989,17 @@ impl Model {
         Ok((&self.state, self.sens_state.as_ref()))
     }
 
+    /// The first parameter or input (at `x`) not finite, as [`StepError::NotFinite`]:
+    /// parameters first, then inputs, as the compiled step's bad-value test looks for one.
+    fn finite_values(&self, x: &[f64]) -> Result<(), StepError> {
+        let params = self.params.iter().zip(&self.param_values).filter_map(|(p, v)| Some(("parameter", p, (*v)?)));
+        let inputs = self.inputs.iter().zip(x).map(|(i, v)| ("input", i, *v));
+        match params.chain(inputs).find(|(.., v)| !v.is_finite()) {
+            Some((what, name, value)) => Err(StepError::NotFinite { what, name: name.clone(), value }),
+            None => Ok(()),
+        }
+    }
+
     /// [`Model::kinematics`] from the declared initial guess with the default configuration
     /// (the compiled mechanism's `solve`). An angle parameter beyond the configuration's
     /// `largest_precise_angle` is [`StepError::ImpreciseParam`], as the compiled `solve` refuses it;
@@ -995,12 +1011,7 @@ impl Model {
             let (param, value) = (self.params[k].clone(), self.param_values[k].unwrap_or(f64::NAN));
             return Err(StepError::ImpreciseParam { param, value, bound });
         }
-        // Parameters first, then inputs, as the compiled step looks for a bad value.
-        let params = self.params.iter().zip(&self.param_values).filter_map(|(p, v)| Some(("parameter", p, (*v)?)));
-        let inputs = self.inputs.iter().zip(x).map(|(i, v)| ("input", i, *v));
-        if let Some((what, name, value)) = params.chain(inputs).find(|(.., v)| !v.is_finite()) {
-            return Err(StepError::NotFinite { what, name: name.clone(), value });
-        }
+        self.finite_values(x)?;
         let mut guess = vec![0.0; self.unknowns.len()];
         self.guess(x, &mut guess)?;
         self.kinematics(x, &guess, &NewtonConfig::default())

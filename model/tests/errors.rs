@@ -315,6 +315,33 @@ fn a_given_position_not_finite_is_named_alike() {
     }
 }
 
+/// `Model::kinematics_at` with a parameter or an input not finite names it, as the compiled
+/// `kinematics_at_flat` does, before the given position's unknowns: its error was "a value of
+/// the state is not finite", the state computed from the value.
+#[test]
+fn kinematics_at_names_a_parameter_or_input_not_finite() {
+    let cfg = NewtonConfig::default();
+    let q = [0.5, 1.5];
+    for (b, phi, what, name) in
+        [(f64::NAN, 0.5, "parameter", "b"), (3.0, f64::NAN, "input", "phi"), (3.0, f64::INFINITY, "input", "phi")]
+    {
+        let compiled = fx::FourBar { a: 1.0, b, c: 2.5, d: 3.2 };
+        let mut model = read(fx::FOUR_BAR_TEXT);
+        set(&mut model, &[("a", 1.0), ("b", b), ("c", 2.5), ("d", 3.2)]);
+        let e = model.kinematics_at(&[phi], &q, &cfg).map(drop).unwrap_err();
+        let value = if what == "parameter" { b } else { phi };
+        let StepError::NotFinite { what: w, name: n, value: v } = &e else { panic!("{b} {phi}: {e:?}") };
+        assert_eq!((*w, n.as_str(), v.to_bits()), (what, name, value.to_bits()), "{e}");
+        // Before the position: a value not finite there too is not the one named.
+        let both = model.kinematics_at(&[phi], &[f64::NAN, 1.5], &cfg).map(drop).unwrap_err();
+        assert_eq!(format!("{both:?}"), format!("{e:?}"));
+        let c_err = kinloop_runtime::Compiled(&compiled).kinematics_at(&[phi], &q, &cfg).unwrap_err();
+        same(&c_err, &model.explain(&[phi], &q, &cfg, e));
+        let k = model.kernel(SweepConfig::default()).unwrap();
+        same(&c_err, &k.kinematics_at(&Heap([phi].into()), &Heap(q.into()), &cfg).unwrap_err());
+    }
+}
+
 /// The evaluations at a given position write into the caller's buffer only when it has one
 /// place per value: a short one was filled in part, a long one kept what its extra places held,
 /// and both returned `Ok`.
