@@ -16,7 +16,7 @@ use crate::number::pow2_at_most;
 use crate::paths::collected::check_collected;
 use crate::paths::config::SweepConfig;
 use crate::paths::curve::{Metric, Path};
-use crate::paths::sweep::{MAX_INPUT_STEP, SweepOf};
+use crate::paths::sweep::{MAX_INPUT_STEP, SweepOf, check_finite};
 use std::borrow::Cow;
 
 /// The straight path of a [`SampledOf`] in input space and its parameter `s`.
@@ -106,13 +106,17 @@ pub const MAX_SEARCH_POINTS: usize = 1 << 18;
 /// sweep measures it (in its inputs' units at `guess`), cut into equal gaps. Known before any
 /// step, so that a caller can refuse a range too long for its samples before sweeping it (the
 /// search refuses it too, after the sweep). Beyond [`MAX_SAMPLES`](super::MAX_SAMPLES) where no
-/// count a sampled sweep takes will do, `usize::MAX` where the count is not finite. A length
-/// input whose unit depends on the position may need a few more, measured at the solved start.
+/// count a sampled sweep takes will do, `usize::MAX` where the count is not finite (ends so far
+/// apart that the path's length overflows). Ends that are not finite are [`Error::NonFinite`],
+/// as a sweep refuses them. A length input whose unit depends on the position may need a few
+/// more, measured at the solved start.
 ///
 /// Up to [`MAX_SEARCH_POINTS`] natural steps (about 10,000 turns of an angle input) any count
 /// will do; from twice that on, one sample per natural step, a quarter radian of an angle input.
 pub fn samples_to_search<K: Kernel>(k: &K, from: &X<K>, to: &X<K>, guess: &Q<K>) -> Result<usize, Error> {
     check_sizes(k, "a search's samples", &[from, to], &[guess])?;
+    check_finite("from", from.as_ref(), k)?;
+    check_finite("to", to.as_ref(), k)?;
     let path = Path::new(from.clone(), to.clone());
     let natural = Metric::at(k, &path, from, guess).input_len / MAX_INPUT_STEP;
     Ok(least_search_samples(natural))
@@ -1218,5 +1222,21 @@ mod tests {
         }
         assert_eq!(least_search_samples(f64::INFINITY), usize::MAX);
         assert_eq!(least_search_samples(f64::NAN), usize::MAX);
+    }
+    /// Ends that are not finite are refused as a sweep refuses them (`Error::NonFinite`, naming
+    /// the end), where the count was `usize::MAX`, which a caller read as a range too long for
+    /// any sample count.
+    #[test]
+    fn the_samples_to_search_refuse_ends_not_finite() {
+        let m = SliderCrank { r: 1.0, l: 2.5, e: 0.7 };
+        let k = Compiled(&m);
+        let guess = m.guess_flat(&[0.0]);
+        for (from, to, end) in [(f64::NAN, 1.0, "from"), (0.0, f64::INFINITY, "to"), (f64::NEG_INFINITY, 0.0, "from")] {
+            match samples_to_search(&k, &[from], &[to], &guess) {
+                Err(Error::NonFinite { name, .. }) => assert_eq!(name, end, "{from} to {to}"),
+                other => panic!("{from} to {to}: {other:?}"),
+            }
+        }
+        assert_eq!(samples_to_search(&k, &[0.0], &[1.0], &guess).unwrap(), 3);
     }
 }

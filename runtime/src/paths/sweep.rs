@@ -277,7 +277,8 @@ fn found_within<Q, X: Store>(
         && (p.sigma - start.sigma).abs() <= (12.0 * reach + 0.25) * metric.sigma
 }
 
-fn check_finite<K: Kernel>(what: &'static str, v: &[f64], m: &K) -> Result<(), Error> {
+/// `Err(Error::NonFinite)` naming the end `what` of a range where a value of `v` is not finite.
+pub(crate) fn check_finite<K: Kernel>(what: &'static str, v: &[f64], m: &K) -> Result<(), Error> {
     match v.iter().find(|x| !x.is_finite()) {
         Some(&value) => {
             Err(Error::NonFinite { what: Quantity::Range, name: what.into(), value, at: m.location(&[], None) })
