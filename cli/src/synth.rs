@@ -103,7 +103,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     }
     params::require_values(model)?;
     precise_angles(model, &design, default_newton().largest_precise_angle())?;
-    let crate::targets::Targets { rows, header } = crate::targets::read(req.targets)?;
+    let crate::targets::Targets { rows, lines, header } = crate::targets::read(req.targets)?;
     if let Some((line, (column, field, unit))) =
         header.as_ref().and_then(|(n, text)| Some((n, crate::targets::angle_unit(text, req.deg)?)))
     {
@@ -154,7 +154,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
     };
     bar.finish_and_clear();
     let report = report.map_err(|e| problem_error(&name, e, req))?;
-    let units = Units::of(model, req);
+    let units = Units { lines, ..Units::of(model, req) };
     let text = if req.csv { csv(&report, &units) } else { table(&report, &units) };
     crate::output::text(&text, "the candidates")?;
     eprintln!("{}", summary(&report));
@@ -513,6 +513,10 @@ struct Units {
     /// Per parameter of the model (by name): the unit its values are written in, the
     /// declaration's (an angle's in radians, with or without `--deg`), for the header.
     params: Vec<(String, &'static str)>,
+    /// Each target's line in the targets file (from 1), where its defects are said to be: the
+    /// library counts targets from 0, and a header, blank lines and comments move the rows
+    /// further from their count.
+    lines: Vec<usize>,
 }
 
 impl Units {
@@ -530,21 +534,26 @@ impl Units {
         let input = model.input_kinds().first().map_or(1.0, |&k| of(k));
         let turn = (kind == QuantityKind::Angle).then_some(TAU * angle);
         let params = model.params().iter().cloned().zip(model.param_kinds().iter().map(|k| k.unit())).collect();
-        Units { error: of(kind), error_unit, input, angle, angle_unit, turn, params }
+        Units { error: of(kind), error_unit, input, angle, angle_unit, turn, params, lines: Vec::new() }
     }
 }
 
-/// A defect in words, with where it happened (its angles in the units written).
+/// A defect in words, with where it happened (its angles in the units written, its target by
+/// its line in the targets file).
 fn defect(d: &Defect, u: &Units) -> String {
+    let target = |k: &usize| match u.lines.get(*k) {
+        Some(line) => format!("the target of line {line}"),
+        None => format!("target {k}"),
+    };
     match d {
         Defect::Order => "order".into(),
-        Defect::Branch { target } => format!("branch at target {target}"),
-        Defect::Circuit { target, at } => format!("circuit before target {target} (limit at {:.6})", at * u.input),
-        Defect::NoAssembly { target } => format!("no assembly before target {target}"),
+        Defect::Branch { target: k } => format!("branch at {}", target(k)),
+        Defect::Circuit { target: k, at } => format!("circuit before {} (limit at {:.6})", target(k), at * u.input),
+        Defect::NoAssembly { target: k } => format!("no assembly before {}", target(k)),
         Defect::NoFullRotation => "no full rotation".into(),
         Defect::Transmission { min } => format!("transmission angle {:.6} {}", min * u.angle, u.angle_unit),
         Defect::LinkRatio { ratio } => format!("link ratio {ratio:.6}"),
-        Defect::Miss { target, error } => format!("miss at target {target} (error {})", Number(error * u.error)),
+        Defect::Miss { target: k, error } => format!("miss at {} (error {})", target(k), Number(error * u.error)),
         _ => format!("{d:?}"),
     }
 }
@@ -755,8 +764,33 @@ fn refusal(variables: &[String], r: &Refused, message: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{csv_number, csv_text, refusal, value_reach};
-    use kinloop_runtime::synthesis::{Origin, RefusalKind, Refused};
+    use super::{Units, csv_number, csv_text, defect, refusal, value_reach};
+    use kinloop_runtime::synthesis::{Defect, Origin, RefusalKind, Refused};
+
+    /// A defect's target is named by its line in the targets file, not by the library's count
+    /// from 0 ("miss at target 0" was the row on line 1, or on line 4 below a header, a comment
+    /// and a blank line); a target beyond the lines known keeps its count.
+    #[test]
+    fn a_defect_names_its_target_by_its_line() {
+        let u = Units {
+            error: 1.0,
+            error_unit: "length unit",
+            input: 1.0,
+            angle: 1.0,
+            angle_unit: "rad",
+            turn: None,
+            params: Vec::new(),
+            lines: vec![4, 5, 7],
+        };
+        assert_eq!(defect(&Defect::Miss { target: 0, error: 0.25 }, &u), "miss at the target of line 4 (error 0.25)");
+        assert_eq!(defect(&Defect::Branch { target: 2 }, &u), "branch at the target of line 7");
+        assert_eq!(defect(&Defect::NoAssembly { target: 1 }, &u), "no assembly before the target of line 5");
+        assert_eq!(
+            defect(&Defect::Circuit { target: 1, at: 0.5 }, &u),
+            "circuit before the target of line 5 (limit at 0.500000)"
+        );
+        assert_eq!(defect(&Defect::Branch { target: 3 }, &u), "branch at target 3");
+    }
 
     /// A kind of refusal is written with its count, its first start's design variables by name
     /// and its message: before, the summary said only how many could not be assembled.

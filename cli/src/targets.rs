@@ -18,6 +18,8 @@ const OTHER_SEPARATORS: [char; 4] = [';', '\t', ' ', '|'];
 pub struct Targets {
     /// The numeric rows, every row the same width.
     pub rows: Vec<Vec<f64>>,
+    /// Each row's line in the file (from 1): where a defect of its target is said to be.
+    pub lines: Vec<usize>,
     /// The header line skipped (its number from 1, and its text), if the file has one.
     pub header: Option<(usize, String)>,
 }
@@ -34,14 +36,14 @@ pub fn read(path: &Path) -> Result<Targets, Failed> {
             path.display()
         ))
     })?;
-    let (rows, header) = table(&text).map_err(|why| exit::usage(format!("{} {why}", path.display())))?;
-    Ok(Targets { rows, header: header.map(|(n, line)| (n, line.to_string())) })
+    let (rows, lines, header) = table(&text).map_err(|why| exit::usage(format!("{} {why}", path.display())))?;
+    Ok(Targets { rows, lines, header: header.map(|(n, line)| (n, line.to_string())) })
 }
 
 /// The rows of `text` ([`table`]).
 #[cfg(test)]
 fn rows(text: &str) -> Result<Vec<Vec<f64>>, String> {
-    table(text).map(|(rows, _)| rows)
+    table(text).map(|(rows, ..)| rows)
 }
 
 /// The first column of the header `line` whose angle unit (`deg` or `rad`, as `kinloop sweep`
@@ -70,10 +72,12 @@ fn unquoted(field: &str) -> &str {
     field.strip_prefix('"').and_then(|f| f.strip_suffix('"')).map_or(field, str::trim)
 }
 
-/// The rows of a text, and its header line (its number from 1, and its text) where it has one.
-type Table<'a> = (Vec<Vec<f64>>, Option<(usize, &'a str)>);
+/// The rows of a text, each row's line (from 1), and its header line (its number from 1, and its
+/// text) where it has one.
+type Table<'a> = (Vec<Vec<f64>>, Vec<usize>, Option<(usize, &'a str)>);
 
-/// The rows of `text` and its header line (its number from 1, and its text) where it has one;
+/// The rows of `text`, each row's line, and its header line (its number from 1, and its text)
+/// where it has one;
 /// the error is what is wrong and where (`line 3: ...`), to follow the file's name.
 fn table(text: &str) -> Result<Table<'_>, String> {
     // A byte order mark first (a spreadsheet's "CSV UTF-8" writes one) is no part of the first
@@ -81,6 +85,7 @@ fn table(text: &str) -> Result<Table<'_>, String> {
     // (the mark is invisible).
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut numbers = Vec::new();
     let mut header = None;
     let lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     for (k, (n, line)) in lines.enumerate() {
@@ -99,6 +104,7 @@ fn table(text: &str) -> Result<Table<'_>, String> {
                     ));
                 }
                 rows.push(row);
+                numbers.push(n + 1);
             }
             _ if k == 0 && is_header(line) => header = Some((n + 1, line)),
             _ => {
@@ -117,7 +123,7 @@ fn table(text: &str) -> Result<Table<'_>, String> {
     if rows.is_empty() {
         return Err("holds no targets".to_string());
     }
-    Ok((rows, header))
+    Ok((rows, numbers, header))
 }
 
 /// Why the field `field` is refused where it reads as a number too small for a double
@@ -174,7 +180,14 @@ fn separator_name(c: char) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::rows;
+    use super::{rows, table};
+
+    /// Each row's line counts the header, comments and blank lines before it, from 1.
+    #[test]
+    fn each_row_has_its_line() {
+        let (rows, lines, header) = table("# targets\nphi,x\n\n0.5,1\n# moved\n1.5,2\n").unwrap();
+        assert_eq!((rows.len(), lines, header), (2, vec![4, 6], Some((2, "phi,x"))));
+    }
 
     #[test]
     fn a_header_is_a_first_line_of_words() {
