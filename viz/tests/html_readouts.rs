@@ -352,3 +352,27 @@ fn a_length_or_ratio_zero_up_to_rounding_reads_zero() {
         }
     }
 }
+
+/// The units written after the length readouts of a page (`<td class="kl-unit">`), in order.
+fn units(page: &str) -> Vec<&str> {
+    page.split(r#"<td class="kl-unit">"#).skip(1).map(|r| r.split('<').next().unwrap()).collect()
+}
+
+/// A page's lengths are in the drawing's unit where the page's configuration names none: a
+/// drawing given `mm` (its scale bar's unit) had its page's readouts and charts in "length
+/// unit" unless the same unit was given to the page too. A unit the page's configuration
+/// names is the page's, whatever the drawing's.
+#[test]
+fn a_page_takes_its_drawings_length_unit_unless_it_names_its_own() {
+    let m = FourBar::default();
+    let motion = Motion::record(&m, m.sweep(0.0, TAU, POSES, &m.guess(0.0)).unwrap()).unwrap();
+    let drawing = Drawing::new().pivot(Pt::fixed(0.0, 0.0)).link([Pt::fixed(0.0, 0.0), Pt::point("b")]);
+    let config = HtmlConfig::new("units").show("p.x").show("gamma");
+    let in_mm = html(&m, &drawing.clone().length_unit("mm"), &motion, &config).unwrap();
+    assert_eq!(units(&in_mm)[1..], ["mm", "°"], "{:?}", units(&in_mm));
+    assert!(in_mm.contains("p.x [mm]"), "the chart's axis names the unit too");
+    let own = html(&m, &drawing.clone().length_unit("mm"), &motion, &config.clone().with_length_unit("in")).unwrap();
+    assert_eq!(units(&own)[1..], ["in", "°"]);
+    let none = html(&m, &drawing, &motion, &config).unwrap();
+    assert_eq!(units(&none)[1..], ["length unit", "°"]);
+}

@@ -80,8 +80,10 @@ pub struct HtmlConfig {
     pub title: String,
     /// Readouts besides the inputs', in order.
     pub readouts: Vec<Readout>,
-    /// The unit of the mechanism's lengths, written after length readouts (default
-    /// `"length unit"`, as in tables).
+    /// The unit of the mechanism's lengths, written after length readouts and on the charts'
+    /// axes (default `"length unit"`, as in tables). Left at the default, a page takes the
+    /// drawing's own unit where it has one ([`Drawing::length_unit`](crate::draw::Drawing::length_unit),
+    /// its scale bar's): one unit given once.
     pub length_unit: String,
     /// Duration of one pass of the motion when playing, in seconds (default 6), from a
     /// millisecond to a billion seconds, as an animation's.
@@ -134,10 +136,20 @@ impl HtmlConfig {
         self
     }
 
-    /// Sets the unit written after lengths.
+    /// Sets the unit written after lengths (the page's, whatever the drawing's).
     pub fn with_length_unit(mut self, unit: &str) -> HtmlConfig {
         self.length_unit = unit.to_string();
         self
+    }
+
+    /// The unit of the page's lengths over `drawing`: [`HtmlConfig::length_unit`] where it is not
+    /// the default, else the drawing's where it has one. A drawing given `mm` had its page in
+    /// "length unit" unless the page was given `mm` too.
+    pub(crate) fn length_unit_of<'a>(&'a self, drawing: &'a crate::draw::Drawing) -> &'a str {
+        match drawing.length_unit.as_deref() {
+            Some(unit) if self.length_unit == kinloop_runtime::LENGTH_UNIT => unit,
+            _ => &self.length_unit,
+        }
     }
 
     /// Sets the duration of one pass, in seconds.

@@ -10,7 +10,7 @@
 //!   back);
 //! * live readouts of every input and of the columns chosen with [`HtmlConfig::show`] (or any
 //!   [`Readout`]), with their units: angles in degrees, lengths in
-//!   [`HtmlConfig::length_unit`];
+//!   [`HtmlConfig::length_unit`] (the drawing's own unit where the page names none);
 //! * a chart of each readout against the input (against the fraction of the path for several
 //!   inputs), whose cursor follows the slider;
 //! * the sweep's events (limit positions, singular crossings) marked on the slider's track and
@@ -173,7 +173,7 @@ pub(crate) fn html_marked<D: Drawable + ?Sized>(
     let ni = columns.inputs.len();
     let path = frames::path(motion);
     let fr = frames::Frames::build(drawing, motion, frames::spread(&path, config.max_frames), &[path], view)?;
-    let channels = readouts::channels(&columns, config, motion, &fr.poses)?;
+    let channels = readouts::channels(&columns, config, config.length_unit_of(drawing), motion, &fr.poses)?;
     let against_input = ni == 1;
     let labels: Vec<String> = motion
         .events
@@ -318,7 +318,7 @@ pub fn html_grid_of<D: Drawable + ?Sized>(
         )));
     }
     let fr = frames::Frames::build(drawing, motion, (0..motion.poses.len()).collect(), &grid.runs(), None)?;
-    let mut channels = readouts::channels(&columns, config, motion, &fr.poses)?;
+    let mut channels = readouts::channels(&columns, config, config.length_unit_of(drawing), motion, &fr.poses)?;
     for (c, axis) in channels.iter_mut().zip(&grid.axes) {
         readouts::on_axis(c, axis);
     }

@@ -143,6 +143,7 @@ fn length_scale(c: &Columns, motion: &Motion) -> f64 {
 pub(crate) fn channels(
     c: &Columns,
     config: &HtmlConfig,
+    length_unit: &str,
     motion: &Motion,
     poses: &[usize],
 ) -> Result<Vec<Channel>, HtmlError> {
@@ -171,7 +172,7 @@ pub(crate) fn channels(
     for r in list {
         let (label, kind, get): (String, Kind, Box<dyn Fn(usize) -> f64>) = match &r.value {
             Value::Column(name) => {
-                let (src, inferred) = column(c, name, &config.length_unit)?;
+                let (src, inferred) = column(c, name, length_unit)?;
                 let get = move |i: usize| {
                     let p = pose(motion, i);
                     match src {
