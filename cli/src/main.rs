@@ -198,7 +198,7 @@ enum Command {
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
+        /// Writes the events as CSV to this file (`kind,tau [1],` inputs, unknowns) instead of
         /// listing them on standard error; an input or unknown named `kind` or `tau` is refused.
         #[arg(long, value_name = "FILE")]
         events: Option<PathBuf>,
@@ -237,7 +237,7 @@ enum Command {
         /// Angles in degrees (inputs given and values written); otherwise radians.
         #[arg(long)]
         deg: bool,
-        /// Writes the events as CSV to this file (`kind,tau,` inputs, unknowns) instead of
+        /// Writes the events as CSV to this file (`kind,tau [1],` inputs, unknowns) instead of
         /// listing them on standard error; an input or unknown named `kind` or `tau` is refused.
         #[arg(long, value_name = "FILE")]
         events: Option<PathBuf>,

@@ -357,7 +357,7 @@ pub(crate) fn events_columns(model: &Model, command: &str, events: Option<&Path>
     own_columns::check(&own, model.name(), inputs.chain(unknowns))
 }
 
-/// The events as CSV (`kind,tau,` the inputs and the unknowns, in the sweep's units, named
+/// The events as CSV (`kind,tau [1],` the inputs and the unknowns, in the sweep's units, named
 /// `name [unit]` as the table's columns) into `file` (`--events`), or one line each on
 /// standard error.
 pub(crate) fn write_events(
@@ -398,7 +398,9 @@ pub(crate) fn write_events(
     let header = header.with_units(&base.iter().map(|(n, u)| (n.as_str(), *u)).collect::<Vec<_>>());
     let mut line = Vec::new();
     header.write_csv(&mut line)?;
-    write!(w, "{},{}", EVENT_COLUMNS.join(","), String::from_utf8_lossy(&line))?;
+    // `tau`, the fraction of the path, is a pure number: `[1]`, as the table writes one.
+    let [kind, tau] = EVENT_COLUMNS;
+    write!(w, "{kind},{tau} [{}],{}", QuantityKind::Dimensionless.unit(), String::from_utf8_lossy(&line))?;
     for e in events {
         let values: Vec<String> =
             e.x.iter().chain(&e.q).zip(&kinds[..ni + e.q.len()]).map(|(v, k)| angle(*k, *v).to_string()).collect();
@@ -551,7 +553,7 @@ mod tests {
         let numbers: String = text.lines().map(|l| l.split_once(',').expect("a kind").1.to_string() + "\n").collect();
         let table = Table::read_csv(numbers.as_bytes()).unwrap_or_else(|e| panic!("{e}: {numbers}"));
         assert_eq!(table.columns, ["tau", "phi", "psi", "theta"]);
-        assert_eq!(table.units, ["", "rad", "rad", "rad"]);
+        assert_eq!(table.units, ["1", "rad", "rad", "rad"]);
         // A zero is written without its sign, as the table's rows write it.
         let want = [[0.125, 1.9446, 0.0, 5e-324], [1.0, 1e300, 0.1 + 0.2, -1e-7]];
         for (row, want) in table.rows.iter().zip(want) {

@@ -283,7 +283,7 @@ fn sweep_lists_the_limit_position_and_fails() {
     let events = std::fs::read_to_string(&events).expect("events file");
     let mut lines = events.lines();
     // The table's headers of the same columns, with their units.
-    assert_eq!(lines.next(), Some("kind,tau,phi [rad],beta [rad],gamma [rad]"));
+    assert_eq!(lines.next(), Some("kind,tau [1],phi [rad],beta [rad],gamma [rad]"));
     let event: Vec<&str> = lines.next().expect("one event").split(',').collect();
     assert_eq!(event[0], "limit position");
     let at: f64 = event[2].parse().expect("a number");

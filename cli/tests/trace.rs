@@ -22,7 +22,7 @@ fn stretched_limit(a: f64, b: f64, c: f64, d: f64) -> f64 {
 fn events(path: &std::path::Path) -> Vec<(String, Vec<f64>)> {
     let text = std::fs::read_to_string(path).expect("the events file");
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("kind,tau,phi [deg],beta [deg],gamma [deg]"));
+    assert_eq!(lines.next(), Some("kind,tau [1],phi [deg],beta [deg],gamma [deg]"));
     lines
         .map(|l| {
             let (kind, rest) = l.split_once(',').expect("a kind");
@@ -428,7 +428,7 @@ fn an_input_or_unknown_named_as_an_events_column_is_a_usage_error() {
     for command in ["sweep", "trace"] {
         assert!(run(command, &shipped("four_bar.kl"), true).status.success(), "{command}");
         let written = std::fs::read_to_string(&events).expect("the events file");
-        assert!(written.starts_with("kind,tau,phi [rad],beta [rad],gamma [rad]\n"), "{command}: {written}");
+        assert!(written.starts_with("kind,tau [1],phi [rad],beta [rad],gamma [rad]\n"), "{command}: {written}");
         let _ = std::fs::remove_file(&events);
     }
 }
