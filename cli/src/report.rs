@@ -6,7 +6,7 @@ use kinloop_runtime::{Error, EventKind, Number, QuantityKind};
 use std::fmt::Write;
 
 /// The decomposition (counts, mobility, blocks and how each is solved), then the parameters
-/// with their values, the quantities with their units, the size of the run-time program, and
+/// with their units and values, the quantities with their units, the size of the run-time program, and
 /// for a mechanism of one angle input whose parameters all have values, how far that input
 /// moves ([`motion`]).
 pub fn structure(model: &mut Model) -> String {
@@ -15,10 +15,16 @@ pub fn structure(model: &mut Model) -> String {
         .params()
         .iter()
         .zip(model.param_values())
-        .map(|(p, v)| match v {
-            // As numbers are written elsewhere: `{v}` wrote 1e308 in 309 digits, 1e-300 in 301.
-            Some(v) => format!("{p} = {}", kinloop_runtime::Number(*v)),
-            None => format!("{p} (no value)"),
+        .zip(model.param_kinds())
+        .map(|((p, v), k)| {
+            // With its unit as the quantities below are written (`gamma [rad]`): an angle
+            // parameter is in radians, whatever `--deg` does to inputs.
+            let p = if k.unit().is_empty() { p.to_string() } else { format!("{p} [{}]", k.unit()) };
+            match v {
+                // As numbers are written elsewhere: `{v}` wrote 1e308 in 309 digits, 1e-300 in 301.
+                Some(v) => format!("{p} = {}", kinloop_runtime::Number(*v)),
+                None => format!("{p} (no value)"),
+            }
         })
         .collect();
     let _ = writeln!(s, "parameters: {}", if params.is_empty() { "none".to_string() } else { params.join(", ") });

@@ -1089,7 +1089,7 @@ fn a_parameter_without_a_value_is_a_usage_error() {
     assert!(!std::path::Path::new(&svg).exists());
     let out = kinloop(&["check", &four_bar]);
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(String::from_utf8_lossy(&out.stdout).contains("a (no value)"));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("a [length unit] (no value)"));
     // Synthesis: the varied parameters take the values of the search, the others need one.
     let coupler = dir.join("coupler.kl");
     let text = std::fs::read_to_string(shipped("coupler_four_bar.kl")).expect("read");
@@ -1494,7 +1494,22 @@ fn check_writes_huge_and_tiny_parameters_briefly() {
         kinloop(&["check", &shipped("engine.kl"), "--params", "r=1e-300,l=1e308,e=123456789012345678901234567890"]);
     let report = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(report.contains("parameters: r = 1e-300, l = 1e308, e = 1.2345678901234568e29, m_crank = 1.2"), "{report}");
+    let written = "parameters: r [length unit] = 1e-300, l [length unit] = 1e308, e [length unit] = 1.2345678901234568e29, \
+                   m_crank = 1.2";
+    assert!(report.contains(written), "{report}");
+}
+
+/// `check` writes each parameter with its unit, as it writes the inputs, unknowns and outputs
+/// (`phi1 [rad]`): an angle parameter in radians, a length in the unit of length, and a
+/// parameter of no kind the names infer (a mass) bare. It wrote the names alone, so that
+/// `gamma = 0.7` could be read as degrees beside `--deg` commands.
+#[test]
+fn check_writes_each_parameter_with_its_unit() {
+    let out = kinloop(&["check", &shipped("rhombic_drive.kl")]);
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(report.contains("parameters: r_p [length unit] = 1, r_b [length unit] = 1.2,"), "{report}");
+    assert!(report.contains(", gamma [rad] = 0.7,"), "{report}");
 }
 
 /// A guess too many turns out says how many in a few digits: `beta = 1e308` was "159154943...
