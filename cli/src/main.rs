@@ -151,6 +151,8 @@ impl Declaration {
 /// What to do with the mechanism.
 #[derive(Subcommand)]
 enum Command {
+    /// Checks a declaration and reports its structure, and how far its input moves.
+    ///
     /// Checks a declaration and reports its structure: counts, mobility, the blocks in solve
     /// order and how each is solved; for one input angle and every parameter given, how far the
     /// input moves from 0 (whether it turns fully or rocks between two limit positions).
@@ -158,6 +160,8 @@ enum Command {
         #[command(flatten)]
         decl: Declaration,
     },
+    /// Solves positions, analogs and outputs at given inputs, as CSV with units.
+    ///
     /// Solves positions, velocity and acceleration analogs and outputs at given inputs, from
     /// the declared initial guess, and writes them as CSV with units.
     Solve {
@@ -173,6 +177,8 @@ enum Command {
         #[arg(long)]
         deg: bool,
     },
+    /// Sweeps the inputs from `--from` to `--to` without jumping branches, as CSV with units.
+    ///
     /// Sweeps the inputs along the straight path from `--from` to `--to` without jumping
     /// branches, from the declared initial guess at `--from`, and writes the states as CSV
     /// with units; the singular positions met (limit positions, crossings) are listed on
@@ -203,6 +209,8 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         events: Option<PathBuf>,
     },
+    /// Traces the whole solution curve, past limit positions, as CSV with units.
+    ///
     /// Traces the whole solution curve through the declared initial guess at `--from` by
     /// pseudo-arclength continuation, first towards `--to`: unlike `sweep` it passes limit
     /// positions, where the input reverses, so a linkage whose input cannot turn fully (a
@@ -242,6 +250,8 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         events: Option<PathBuf>,
     },
+    /// Inverse dynamics over a turn: driving torque, shaking force and moment, flywheel.
+    ///
     /// The inverse dynamics of a one-input machine from its declared bodies, loads and
     /// gravity, over a turn of its input at a constant speed: per angle the reduced moment of
     /// inertia and its slope, the load on the input, the driving torque and the shaking force
@@ -278,6 +288,8 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         flywheel: Option<PathBuf>,
     },
+    /// Forward simulation under a constant driving torque, from a start angle and speed.
+    ///
     /// The forward simulation of a one-input machine from its declared bodies, loads and
     /// gravity under a constant driving torque, from a start angle and speed: the input angle
     /// and speed at equally spaced times, as CSV with units (masses and lengths in the
@@ -315,6 +327,8 @@ enum Command {
         #[arg(long)]
         deg: bool,
     },
+    /// The disc cam that moves the follower as declared: pitch curve, profile, pressure angle.
+    ///
     /// The disc cam that moves a follower as the declaration says, by kinematic inversion over
     /// one turn of the cam shaft (the input): its pitch curve and profile in the cam's frame,
     /// the pitch curve's radius of curvature and the pressure angle as CSV; the largest
@@ -347,6 +361,8 @@ enum Command {
         #[arg(long, value_name = "PATH")]
         plot: Option<PathBuf>,
     },
+    /// The smallest and largest value of each unknown and output over a sweep.
+    ///
     /// Sweeps the inputs along the straight path from `--from` to `--to` as `sweep` does and
     /// writes the smallest and largest value of each unknown and output with the inputs where
     /// it happens: an interior extreme located as a root of the velocity analog between
@@ -382,6 +398,8 @@ enum Command {
         #[arg(long)]
         table: bool,
     },
+    /// Draws the mechanism moving: an animated SVG or an interactive HTML page.
+    ///
     /// Draws the mechanism from its declaration moving through a branch-safe sweep from
     /// `--from` to `--to` (from the declared initial guess at `--from`), and writes an animated
     /// SVG or an interactive HTML page (slider, play/pause, readouts and charts). A sweep that
@@ -434,6 +452,8 @@ enum Command {
         #[command(flatten)]
         follower: cam::FollowerArgs,
     },
+    /// Dimensional synthesis: the design variables for which a point or an output meets targets.
+    ///
     /// Dimensional synthesis: finds values of the design variables (`--vary`) for which the
     /// point `--path` passes through the targets, or the output of `--function` takes them, by
     /// Levenberg–Marquardt from `--starts` Halton starts on all cores (`--jobs`); verifies every

@@ -1149,9 +1149,17 @@ fn each_command_has_its_own_description() {
     assert!(line("extremes").contains("smallest and largest value"), "{help}");
     let cam = line("cam");
     assert!(cam.contains("disc cam") && !cam.contains("smallest and largest"), "{cam}");
-    for command in ["check", "solve", "sweep", "dynamics", "simulate", "animate", "synth"] {
+    for command in ["check", "solve", "sweep", "trace", "dynamics", "simulate", "animate", "synth"] {
         assert!(line(command).len() > command.len() + 20, "{command} has no description: {help}");
     }
+    // A summary a line each, as a terminal shows it (the whole description is under `kinloop
+    // help COMMAND`): each command's first paragraph was its summary, up to 900 characters on
+    // one line (`trace`).
+    for command in ["check", "solve", "sweep", "trace", "dynamics", "simulate", "cam", "extremes", "animate", "synth"] {
+        assert!(line(command).chars().count() <= 100, "{command}'s summary is longer than a line: {}", line(command));
+    }
+    let long = kinloop(&["help", "trace"]);
+    assert!(String::from_utf8_lossy(&long.stdout).contains("pseudo-arclength continuation"), "the whole description");
 }
 
 /// A closed standard output (`kinloop ... >&-`) is exit 74 with a message, for every command
