@@ -100,10 +100,15 @@ impl Fourier {
 pub fn fourier(values: &[f64], x0: f64, period: f64, harmonics: usize) -> Result<Fourier, Error> {
     let n = values.len();
     // (`2 * harmonics` overflows for a count near `usize::MAX`.)
+    if n == 0 {
+        return Err(Error::InvalidArgument("Fourier coefficients need samples over the period; got none".into()));
+    }
     if harmonics >= n.div_ceil(2) {
+        let samples = if n == 1 { "1 sample resolves".to_string() } else { format!("{n} samples resolve") };
         return Err(Error::InvalidArgument(format!(
-            "{n} samples resolve harmonics below {}, not {harmonics}",
-            n.div_ceil(2)
+            "{samples} harmonics below {}, not {harmonics}: ask for fewer harmonics, or give at least {} samples",
+            n.div_ceil(2),
+            harmonics.saturating_mul(2).saturating_add(1)
         )));
     }
     if !(period.is_finite() && period > 0.0) {
@@ -282,6 +287,18 @@ mod tests {
             let r = fourier(&[1.0; 8], x0, 1.0, 1);
             assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("start of the period")), "{r:?}");
         }
+    }
+
+    /// No samples, or too few for the harmonics asked, are told so with what to give: without
+    /// samples the message was "0 samples resolve harmonics below 0, not 0".
+    #[test]
+    fn too_few_samples_say_what_to_give() {
+        let none = fourier(&[], 0.0, 1.0, 0);
+        assert!(matches!(&none, Err(Error::InvalidArgument(m)) if m.contains("got none")), "{none:?}");
+        let one = fourier(&[1.0], 0.0, 1.0, 1);
+        let says = "1 sample resolves harmonics below 1, not 1: ask for fewer harmonics, or give at least 3 samples";
+        assert!(matches!(&one, Err(Error::InvalidArgument(m)) if m == says), "{one:?}");
+        assert!(fourier(&[1.0], 0.0, 1.0, 0).is_ok());
     }
 
     /// A count of harmonics whose double overflows is an error, not an overflow panic (a debug
