@@ -106,8 +106,8 @@ pub struct Jet {
 impl Jet {
     /// `intervals + 1` equally spaced jets of `f` from `from` to `to` (both included).
     ///
-    /// Errors: no interval, or more than [`MAX_SAMPLES`], an end not finite (before `f` is
-    /// called); the first error of `f`.
+    /// Errors: no interval, or more than [`MAX_SAMPLES`], or more jets than the 1 GiB of memory
+    /// kept at most (2^25 jets), an end not finite (before `f` is called); the first error of `f`.
     ///
     /// ```
     /// use kinloop_runtime::analysis::Jet;
@@ -131,6 +131,13 @@ impl Jet {
                 "the ends of a sampled range must be finite, got {from} and {to}"
             )));
         }
+        // Every jet is kept: within `MAX_SAMPLES`, 10^8 intervals would reserve 3.2 GB.
+        let (jet_bytes, budget) = (size_of::<Jet>(), crate::paths::collected::MAX_COLLECTED_BYTES);
+        let instead = format!(
+            "give at most {} intervals (the jets that fit), or sample the range in parts",
+            budget / jet_bytes - 1
+        );
+        crate::paths::collected::check_collected("`Jet::sample`", "jets", intervals + 1, jet_bytes, &instead)?;
         let mut jets = Vec::new();
         jets.try_reserve_exact(intervals + 1)
             .map_err(|e| Error::InvalidArgument(format!("{intervals} intervals: no room for their jets ({e})")))?;
@@ -264,6 +271,31 @@ mod tests {
         let s = Jet::sample(|x| Ok(Jet { x, ..Jet::default() }), -1e308, 1e308, 4).unwrap();
         let x: Vec<f64> = s.iter().map(|j| j.x).collect();
         assert_eq!(x, [-1e308, -0.5e308, 0.0, 0.5e308, 1e308]);
+    }
+
+    /// More jets than the memory kept at most (`MAX_COLLECTED_BYTES`, 1 GiB: 2^25 jets of 32
+    /// bytes) are refused before `f` is called, with the most that fit, as a trace's points
+    /// are: within [`MAX_SAMPLES`], 10^8 intervals reserved 3.2 GB, which the system may grant
+    /// and then fail to give as the jets are written. The most that fit are sampled.
+    #[test]
+    fn more_jets_than_the_memory_budget_are_refused_before_sampling() {
+        let fit = crate::paths::collected::MAX_COLLECTED_BYTES / size_of::<Jet>();
+        let mut calls = 0usize;
+        let r = Jet::sample(
+            |x| {
+                calls += 1;
+                Ok(Jet { x, ..Jet::default() })
+            },
+            0.0,
+            1.0,
+            fit,
+        );
+        match r {
+            Err(Error::InvalidArgument(m)) => assert!(m.contains(&format!("at most {}", fit - 1)), "{m}"),
+            other => panic!("{:?}", other.map(|v| v.len())),
+        }
+        assert_eq!(calls, 0);
+        assert!(fit <= MAX_SAMPLES);
     }
 
     /// A count of intervals beyond [`MAX_SAMPLES`] is refused before `f` is called once: the
