@@ -14,6 +14,7 @@ mod cam_profile;
 mod classical_synthesis;
 mod classical_units;
 mod coarse_samples;
+mod far_from_origin;
 mod flat_face;
 mod limits_crossing;
 mod limits_extreme_scales;

@@ -825,25 +825,22 @@ impl<K: Kernel> SampledOf<K> {
     }
 
     /// Whether a column stands still over a search's points (`jets`, and the `corners` at the
-    /// crossings among them): all its values within its rounding, the
-    /// [`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of its natural scale (see
-    /// [`SampledOf::natural_scale`]: its own size, and at least `pi` for an angle, the
-    /// mechanism's largest length for a length, 1 for a pure number), as its return to its
-    /// start is judged. Its velocity analog is then rounding too, and the sign changes of that
+    /// crossings among them): all its values within its rounding (see
+    /// [`SampledOf::rounding_tolerance`]), as its return to its start is judged. Its velocity analog is then rounding too, and the sign changes of that
     /// noise are no extremes: a parallelogram's coupler angle, zero at every crank angle, had
     /// thirty "extremes" a turn, at crank angles the rounding chose.
     ///
     /// And its velocity analog says so too, where its kind has a scale of motion (see
     /// [`SampledOf::motion_scale`]): the analog's largest magnitude over the range's length
-    /// within the same tolerance of it. The values' tolerance grows with their magnitude, and a
-    /// small mechanism far from the origin moves by less than it (a slider-crank a millimetre
-    /// across in Earth-centred coordinates, 6.4e6 m out, strokes 2 mm where the tolerance is
+    /// within the same tolerance of it. The values' tolerance grew with their magnitude, and a
+    /// small mechanism far from the origin moved by less than it (a slider-crank a millimetre
+    /// across in Earth-centred coordinates, 6.4e6 m out, strokes 2 mm where the tolerance was
     /// 6.4 mm): its slider "stood still", without extremes, one rest a turn. The analogs are
     /// free of the offset, and a column that stands still has analogs at their rounding.
     fn stands_still(&self, c: ColumnIndex, jets: &[Jet], corners: &[extremes::Corner]) -> bool {
         let values = || jets.iter().chain(corners.iter().map(|k| &k.at)).map(|j| j.value);
         let (lo, hi) = values().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
-        if hi - lo > unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, values()) {
+        if hi - lo > self.rounding_tolerance(c, values()) {
             return false;
         }
         let Some(scale) = self.motion_scale(c) else { return true };
@@ -934,7 +931,7 @@ impl<K: Kernel> SampledOf<K> {
         // as its return to its start is (see `periodic`), it has no net travel.
         self.searched(c, |jets, corners, eval| {
             let values = jets.iter().chain(corners.iter().map(|k| &k.at)).map(|j| j.value);
-            let still = unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, values);
+            let still = self.rounding_tolerance(c, values);
             dwell::dwells_across(jets, corners, eval, still)
         })
     }
@@ -950,8 +947,8 @@ impl<K: Kernel> SampledOf<K> {
     /// and dwells has no net travel, so no dwell by that definition, but two rests a turn.
     ///
     /// A column that stands still over the whole range to its rounding (all its values within
-    /// [`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of its natural scale, as
-    /// [`SampledOf::extremes`] judges it: a point's coordinate on a line of symmetry, zero in
+    /// [`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of how far what it is computed
+    /// from moves, as [`SampledOf::extremes`] judges it: a point's coordinate on a line of symmetry, zero in
     /// exact arithmetic) is one rest, the whole range. Its values are rounding, and its
     /// velocity analog, exactly zero over some stretches and a rounding's size over others,
     /// made it "stand still" in fragments, at values apart by their rounding.
@@ -1031,7 +1028,7 @@ impl<K: Kernel> SampledOf<K> {
         let mut jets = self.jets_of(c);
         self.on_grid(c, &mut jets)?;
         let (a, b) = (jets[0].value, jets[jets.len() - 1].value);
-        if (a - b).abs() > unbalance::PERIODIC_TOLERANCE * self.natural_scale(c, jets.iter().map(|j| j.value)) {
+        if (a - b).abs() > self.rounding_tolerance(c, jets.iter().map(|j| j.value)) {
             return Err(Error::InvalidArgument(format!(
                 "`{}` is not periodic over the sweep ({a} at the start, {b} at the end): sweep exactly one cycle",
                 column_name(&self.k, c)
@@ -1074,43 +1071,46 @@ impl<K: Kernel> SampledOf<K> {
         Ok(())
     }
 
-    /// The size against which a column's rounding is judged: its own largest magnitude, and at
-    /// least what its kind's values are computed from. A column that stands still in exact
-    /// arithmetic (a parallelogram's coupler angle, a point's coordinate on a line of symmetry)
-    /// is rounding alone, some 1e-16 of the quantities it is solved from: against its own size
-    /// that noise is all there is, and a turn of it was "not periodic".
+    /// The tolerance within which a column's values are one value (its return to its start, its
+    /// standing still, a net travel that is none): its rounding. A column that stands still in
+    /// exact arithmetic (a parallelogram's coupler angle, a point's coordinate on a line of
+    /// symmetry) is rounding alone, some 1e-16 of the quantities it is solved from: against its
+    /// own size that noise is all there is, and a turn of it was "not periodic". So the
+    /// tolerance is [`PERIODIC_TOLERANCE`](unbalance::PERIODIC_TOLERANCE) of how far what it is
+    /// computed from moves, whatever the column's own value:
     ///
-    /// * an angle: at least `pi`, the size of any angle (its rounding is absolute, a few ulps of
-    ///   the angles summed and the `atan2`s taken, whatever the angle's own value);
-    /// * a length: at least the largest length of any column over the samples, the
-    ///   mechanism's own size (not an absolute floor: the unit of length is the user's, and a
-    ///   mechanism a micrometre across is judged as one a metre across);
-    /// * a pure number (a ratio of lengths, a sine): at least 1, as an angle; its rounding is
-    ///   absolute too, a few ulps of the sines and ratios of size one it is computed from, in
-    ///   any unit of length (a ratio that is zero in exact arithmetic, the height of a centred
-    ///   slider's pin over its rod, was rounding judged against itself: "not periodic");
-    /// * anything else (a time, a quantity whose kind is not inferred, an area): its own size
-    ///   alone; kinloop does not know what it is computed from (one that is zero in exact
-    ///   arithmetic is rounding judged against itself, and does not stand still).
-    fn natural_scale(&self, c: ColumnIndex, values: impl Iterator<Item = f64>) -> f64 {
+    /// * an angle: `pi`, the size of any angle (its rounding is absolute, a few ulps of the
+    ///   angles summed and the `atan2`s taken, whatever the angle's own value);
+    /// * a length: the largest range of any length column over the samples, how far the
+    ///   mechanism moves (not an absolute floor: the unit of length is the user's, and a
+    ///   mechanism a micrometre across is judged as one a metre across; nor where it stands:
+    ///   the largest magnitude of any length, the floor this was, grew with the mechanism's
+    ///   distance from the origin, and a slider-crank a millimetre across 6.4e6 m out took half
+    ///   a turn for a period, its tolerance 6.4 mm);
+    /// * a pure number (a ratio of lengths, a sine): 1, as an angle; its rounding is absolute
+    ///   too, a few ulps of the sines and ratios of size one it is computed from, in any unit of
+    ///   length (a ratio that is zero in exact arithmetic, the height of a centred slider's pin
+    ///   over its rod, was rounding judged against itself: "not periodic");
+    /// * anything else (a time, a quantity whose kind is not inferred, an area): its own size;
+    ///   kinloop does not know what it is computed from (one that is zero in exact arithmetic is
+    ///   rounding judged against itself, and does not stand still);
+    ///
+    /// and beside it [`ROUNDING`](unbalance::ROUNDING) of the magnitude of the values, the
+    /// column's own and, for a length, any length column's: what a double far from the origin
+    /// resolves.
+    fn rounding_tolerance(&self, c: ColumnIndex, values: impl Iterator<Item = f64>) -> f64 {
         let own = values.map(f64::abs).fold(0.0, f64::max);
-        own.max(self.kind_scale(c))
-    }
-
-    /// The size of what a column of `c`'s kind is computed from (see
-    /// [`SampledOf::natural_scale`]): `pi` for an angle, the mechanism's largest length for a
-    /// length, 1 for a pure number, 0 for anything else.
-    fn kind_scale(&self, c: ColumnIndex) -> f64 {
-        match column_kind(&self.k, c) {
-            QuantityKind::Angle => std::f64::consts::PI,
-            QuantityKind::Length => self.length_scale(),
-            QuantityKind::Dimensionless => 1.0,
-            _ => 0.0,
-        }
+        let (motion, magnitude) = match column_kind(&self.k, c) {
+            QuantityKind::Angle => (std::f64::consts::PI, own),
+            QuantityKind::Length => (self.length_range(), own.max(self.length_scale())),
+            QuantityKind::Dimensionless => (1.0, own),
+            _ => (own, own),
+        };
+        unbalance::PERIODIC_TOLERANCE * motion + unbalance::ROUNDING * magnitude
     }
 
     /// The largest magnitude of any length column (input, unknown or output) over the samples:
-    /// the size of the mechanism in its own unit of length (0 without length columns).
+    /// where the mechanism stands, in its own unit of length (0 without length columns).
     fn length_scale(&self) -> f64 {
         self.length_columns()
             .flat_map(|c| self.states.iter().map(move |st| column_value(c, st).abs()))
@@ -1156,12 +1156,12 @@ impl<K: Kernel> SampledOf<K> {
     pub fn unbalance(&self, c: impl ColumnOf<K>, removed: usize) -> Result<Unbalance, Error> {
         let c = c.resolve(&self.k)?;
         let jets = self.periodic(c)?;
-        let scale = self.natural_scale(c, jets.iter().map(|j| j.value));
+        let tolerance = self.rounding_tolerance(c, jets.iter().map(|j| j.value));
         // The residual's extremes are looked for as `extremes` looks for a column's: across a
         // singular crossing the sweep passed, at the crossing, not by a refinement stepping
         // into its band (which failed the whole call with `NearSingular`).
         self.searched(c, |search, corners, eval| {
-            unbalance::unbalance_across(&jets, search, corners, eval, removed, scale)
+            unbalance::unbalance_across(&jets, search, corners, eval, removed, tolerance)
         })
     }
 }

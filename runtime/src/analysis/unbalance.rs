@@ -16,11 +16,31 @@ use super::extremes::{Corner, check_increasing, extremes_across};
 use super::fourier::{Fourier, fourier};
 use crate::error::Error;
 
-/// How far, relative to a quantity's size, its last sample over a period may differ from its
-/// first for the samples to be one period: a thousand times the rounding a solve leaves in a
+/// How far, relative to how far a quantity moves, its last sample over a period may differ from
+/// its first for the samples to be one period: a thousand times the rounding a solve leaves in a
 /// mechanism's positions (Newton's residual tolerance, 1e-12 of the mechanism's size), far below
-/// what a sweep a step short of a cycle leaves.
+/// what a sweep a step short of a cycle leaves. Beside it the rounding of the values' own
+/// magnitude, [`ROUNDING`] of it, which is all a quantity far from 0 adds: a tolerance relative
+/// to the magnitude grew with the offset (a slider a millimetre across, 6.4e6 m out, took half a
+/// turn for a period within 6.4 mm).
 pub const PERIODIC_TOLERANCE: f64 = 1e-9;
+
+/// The rounding of a value, relative to its magnitude, that tells it from a different one: 64
+/// units of rounding (`f64::EPSILON`, twice a unit in the last place at most), room for the
+/// roundings of the sums and the last Newton correction a position is computed by, each of a
+/// unit or so of the largest term (a point far from 0 repeats its value over a turn to the last
+/// bit, as measured).
+pub const ROUNDING: f64 = 64.0 * f64::EPSILON;
+
+/// The tolerance within which a quantity whose values over the samples are `values` returns to
+/// its start: [`PERIODIC_TOLERANCE`] of its range, and [`ROUNDING`] of its largest magnitude.
+/// Both are free of the unit, and the range of an offset as well.
+pub(crate) fn periodic_tolerance(values: impl Iterator<Item = f64>) -> f64 {
+    let (lo, hi, big) = values
+        .fold((f64::INFINITY, f64::NEG_INFINITY, 0.0f64), |(lo, hi, big), v| (lo.min(v), hi.max(v), big.max(v.abs())));
+    let range = if hi >= lo { hi - lo } else { 0.0 };
+    PERIODIC_TOLERANCE * range + ROUNDING * big
+}
 
 /// The unbalance left in a periodic quantity after removing harmonics `0 ..= removed`: the
 /// residual `v - v_m` and its largest magnitude.
@@ -44,7 +64,8 @@ pub struct Unbalance {
 /// Errors (`InvalidArgument`): samples not equally spaced to `1e-9` of the period, or too far
 /// from 0 for a double to resolve their spacing to that (beyond about `4.5e6` periods, the
 /// error naming their magnitude and its resolution: shift them by whole periods), or whose
-/// last value does not repeat the first (to [`PERIODIC_TOLERANCE`] of their largest magnitude: not one period; a quantity
+/// last value does not repeat the first (to [`PERIODIC_TOLERANCE`] of their range and
+/// [`ROUNDING`] of their largest magnitude, whatever their offset from 0: not one period; a quantity
 /// that is rounding alone, zero in exact arithmetic, may fail this: give its samples to
 /// [`Sampled::unbalance`](crate::analysis::Sampled::unbalance), which judges a column against
 /// the size of what it is computed from); too many harmonics `removed` for the samples (see
@@ -71,24 +92,13 @@ pub fn unbalance(
     eval: impl FnMut(f64) -> Result<Jet, Error>,
     removed: usize,
 ) -> Result<Unbalance, Error> {
-    let scale = samples.iter().fold(0.0f64, |m, s| m.max(s.value.abs()));
-    unbalance_at_scale(samples, eval, removed, scale)
+    let tolerance = periodic_tolerance(samples.iter().map(|s| s.value));
+    unbalance_across(samples, samples, &[], eval, removed, tolerance)
 }
 
-/// [`unbalance`], the last sample's return to the first judged against `scale` (the
-/// quantity's natural size, at least its own largest magnitude: see
+/// [`unbalance`], the last sample's return to the first judged within `tolerance` (see
 /// [`SampledOf::unbalance`](crate::analysis::SampledOf::unbalance), which knows what a column
-/// is computed from).
-pub(crate) fn unbalance_at_scale(
-    samples: &[Jet],
-    eval: impl FnMut(f64) -> Result<Jet, Error>,
-    removed: usize,
-    scale: f64,
-) -> Result<Unbalance, Error> {
-    unbalance_across(samples, samples, &[], eval, removed, scale)
-}
-
-/// [`unbalance_at_scale`] with the residual's extremes looked for among the jets `search` (the
+/// is computed from), with the residual's extremes looked for among the jets `search` (the
 /// samples and points between them, in increasing `x`) and across `corners` between them (the
 /// singular crossings of a sampled range, where nothing is evaluated nearby: see
 /// `extremes_across`); the harmonics are still those of the equally spaced `samples`.
@@ -98,7 +108,7 @@ pub(crate) fn unbalance_across(
     corners: &[Corner],
     mut eval: impl FnMut(f64) -> Result<Jet, Error>,
     removed: usize,
-    scale: f64,
+    tolerance: f64,
 ) -> Result<Unbalance, Error> {
     check_increasing(samples)?;
     let n = samples.len() - 1;
@@ -107,7 +117,7 @@ pub(crate) fn unbalance_across(
     check_spacing(samples, x0, period)?;
     // Over part of a period (or more) the harmonics are of another quantity, which repeats the
     // samples of the range: the residual of half a turn of a cosine was 1.125, as `Ok`.
-    if (samples[n].value - samples[0].value).abs() > PERIODIC_TOLERANCE * scale {
+    if (samples[n].value - samples[0].value).abs() > tolerance {
         return Err(Error::InvalidArgument(format!(
             "residual needs samples over one period: the quantity is {} at the start and {} at the end",
             samples[0].value, samples[n].value
@@ -228,6 +238,33 @@ mod tests {
         bad[3].x += 0.01;
         let r = unbalance(&bad, f, 1);
         assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("equally spaced samples")), "{r:?}");
+    }
+
+    /// The same quantity `1e7` of its amplitude from 0: half a period is still not one, and a
+    /// whole one leaves the same residual, to the rounding of values that far out. The return
+    /// to the start was judged within 1e-9 of the values' magnitude, `1e-2` there: half a turn
+    /// of `1e7 + cos x`, from `1e7 + 1` to `1e7 - 1`, was refused, but one of `1e7 + 1e-3 cos x`
+    /// passed for a period.
+    #[test]
+    fn a_quantity_far_from_zero_is_judged_periodic_as_near_it() {
+        for (offset, amplitude) in [(0.0, 1e-3), (1e7, 1e-3), (-1e7, 1.0)] {
+            let f = move |x: f64| {
+                Ok(Jet {
+                    x,
+                    value: offset + amplitude * (x.cos() + 0.1 * (2.0 * x).sin()),
+                    d1: amplitude * (-x.sin() + 0.2 * (2.0 * x).cos()),
+                    d2: amplitude * (-x.cos() - 0.4 * (2.0 * x).sin()),
+                })
+            };
+            let half: Vec<Jet> = (0..=20).map(|j| f(TAU * j as f64 / 40.0).unwrap()).collect();
+            let r = unbalance(&half, f, 1);
+            assert!(matches!(&r, Err(Error::InvalidArgument(m)) if m.contains("one period")), "{offset:e}: {r:?}");
+            let turn: Vec<Jet> = (0..=24).map(|j| f(TAU * j as f64 / 24.0).unwrap()).collect();
+            let u = unbalance(&turn, f, 1).unwrap();
+            // The second harmonic is left, `0.1` of the amplitude, to the rounding of the values.
+            let tol = 16.0 * f64::EPSILON * (offset.abs() + amplitude);
+            assert!((u.max_abs - 0.1 * amplitude).abs() < tol, "{offset:e}: {u:?}");
+        }
     }
 
     /// Samples equally spaced as given, `1e7` periods from 0: a double there is resolved to
