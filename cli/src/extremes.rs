@@ -295,20 +295,23 @@ fn select(
         return Err(exit::usage(format!("--columns `{list}` names no column (they are: {})", known.join(", "))));
     }
     let names: Vec<&str> = list.split(',').map(str::trim).filter(|c| !c.is_empty()).collect();
-    // A column named twice would be a row written twice.
-    if let Some(c) = names.iter().enumerate().find(|(k, c)| names[..*k].contains(c)).map(|(_, c)| c) {
-        return Err(exit::usage(format!("--columns `{list}` names `{c}` twice: name each column once")));
-    }
-    names
-        .into_iter()
-        .map(|c| {
+    // A name of nothing is refused before a name given twice: `p.x,p.x` of a mechanism without
+    // `p` was "named twice", and naming it once was refused next.
+    let columns = names
+        .iter()
+        .map(|&c| {
             quantities.iter().find(|(n, _)| n == c).cloned().ok_or_else(|| {
                 let known: Vec<&str> = quantities.iter().map(|(n, _)| n.as_str()).collect();
                 let look = crate::names::look_alike(c, &known);
                 exit::usage(format!("{name} has no unknown or output `{c}`{look} (they are: {})", known.join(", ")))
             })
         })
-        .collect()
+        .collect::<Result<Vec<_>, _>>()?;
+    // A column named twice would be a row written twice.
+    if let Some(c) = names.iter().enumerate().find(|(k, c)| names[..*k].contains(c)).map(|(_, c)| c) {
+        return Err(exit::usage(format!("--columns `{list}` names `{c}` twice: name each column once")));
+    }
+    Ok(columns)
 }
 
 /// The header's cells: the column, its unit, the minimum and the inputs there, the maximum and

@@ -298,6 +298,14 @@ fn columns_named_twice_are_a_usage_error() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("names `x_c` twice"), "{err}");
     assert!(out.stdout.is_empty());
+    // A name of nothing given twice is refused as a name of nothing, the mistake to mend
+    // first: it was refused as named twice, and named once next as unknown.
+    let args = ["extremes", &shipped("rhombic_drive.kl"), "--from", "0", "--to", "1", "--columns", "p.x,p.x"];
+    let out = kinloop(&args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("has no unknown or output `p.x`"), "{err}");
+    assert!(!err.contains("twice"), "{err}");
 }
 
 /// `--from` and `--to` too close together for the samples' inputs to be told apart (a range of
