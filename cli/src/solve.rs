@@ -406,6 +406,9 @@ pub fn radians_of(v: f64, given: &str) -> Result<f64, Failed> {
 
 /// A point `x,y` of two finite numbers, given to the option `option` (`--about`, `--pivot`).
 pub fn point(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
+    if spec.trim().is_empty() {
+        return Err(empty(option, "a point `x,y` of two finite numbers"));
+    }
     let not_a_point = format!("{option} {spec} is not a point `x,y` of two finite numbers");
     match spec.split(',').map(number).collect::<Result<Vec<f64>, _>>() {
         Ok(v) => match v[..] {
@@ -416,8 +419,22 @@ pub fn point(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
     }
 }
 
+/// The usage error of the option `option` given an empty value (an unset shell variable), which
+/// takes `what`. Written as the other values are, `{option} {spec}`, it read with two spaces and
+/// the number "``" (`--at  is not a list of finite numbers: `` is not a number`).
+fn empty(option: &str, what: &str) -> Failed {
+    exit::usage(format!("{option} is given nothing: give {what}"))
+}
+
 /// One list of inputs (of the option `option`): one number per input.
 pub fn parse_inputs(spec: &str, ni: usize, option: &str) -> Result<Vec<f64>, Failed> {
+    if spec.trim().is_empty() {
+        let what = match ni {
+            1 => "a finite number, the mechanism's input".to_string(),
+            _ => format!("{ni} finite numbers separated by commas, one per input of the mechanism"),
+        };
+        return Err(empty(option, &what));
+    }
     // A number too small for a double is refused, as in --params (`1e-400` was taken as 0
     // without a word).
     let x = spec.split(',').map(number).collect::<Result<Vec<f64>, _>>();

@@ -191,6 +191,28 @@ fn errors_have_carets_and_exit_codes() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// An option of inputs or of a point given nothing (an unset shell variable, `--at "$X"`) is a
+/// usage error saying so and what it takes, where `{option} {value}` read `--at  is not a list of
+/// finite numbers: `` is not a number`, two spaces and an empty number.
+#[test]
+fn an_option_given_nothing_says_so_and_what_it_takes() {
+    let (rhombic, four_bar, engine) = (shipped("rhombic_drive.kl"), shipped("four_bar.kl"), shipped("engine.kl"));
+    let params = "a=1,b=3,c=2.5,d=3.2";
+    for (args, option, takes) in [
+        (vec!["solve", &rhombic, "--at", ""], "--at", "a finite number, the mechanism's input"),
+        (vec!["solve", &rhombic, "--at", " "], "--at", "a finite number, the mechanism's input"),
+        (vec!["sweep", &four_bar, "--params", params, "--from", "", "--to", "1"], "--from", "a finite number"),
+        (vec!["extremes", &four_bar, "--params", params, "--from", "0", "--to", ""], "--to", "a finite number"),
+        (vec!["dynamics", &engine, "--speed", "150", "--about", ""], "--about", "a point `x,y` of two finite numbers"),
+    ] {
+        let out = kinloop(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(&format!("{option} is given nothing: give {takes}")), "{args:?}: {err}");
+        assert!(!err.contains("  ") && !err.contains("``"), "{args:?}: {err}");
+    }
+}
+
 /// Samples closer together than the input's doubles can place them (100,000 over
 /// `1e12 .. 1e12 + 1`, doubles `1.2e-4` apart: the table repeated rows, 8,193 distinct inputs)
 /// are a usage error naming the input and both spacings, before any row; 10,000 over
