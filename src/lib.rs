@@ -288,7 +288,9 @@
 //! [`Vec2`] adds, subtracts, scales and converts to `nalgebra::Vector2` (and, with the feature
 //! `mint`, `mint::Vector2`). With the feature `serde`, parameter sets, named positions and
 //! outputs, states, tables, events and configurations implement `Serialize` and `Deserialize`
-//! (the generated structs name serde through `kinloop`, so no serde dependency is needed).
+//! (the generated structs name serde through `kinloop`, so no serde dependency is needed). A
+//! generated struct or a state read with a field it does not have (a misspelt parameter) is an
+//! error naming the field and those it has.
 //! Through JSON, serde_json reads every number back to the bit with its feature
 //! `float_roundtrip` (`serde_json = { version = "1", features = ["float_roundtrip"] }`);
 //! without it, its faster parser may read the last bit of some numbers differently. JSON has

@@ -10,9 +10,11 @@
 //! and stays as it was; the work is done where the derive expands.
 //!
 //! How: serde's own derive on a hidden twin of the struct, declared `remote` for it, does the
-//! field-by-field work with serde's exact semantics (names, `skip`, missing and unknown fields);
-//! the impl emitted here calls the twin's functions with the format's serializer or
-//! deserializer wrapped in the adapter. A container `into` (`from`) is honoured directly: the
+//! field-by-field work with serde's exact semantics (names, `skip`, missing fields); the impl
+//! emitted here calls the twin's functions with the format's serializer or deserializer wrapped
+//! in the adapter. A field the struct does not have is an error naming it and the fields it has
+//! (the twin denies unknown fields): a parameter set with a misspelt parameter (`r_pp` beside
+//! `r_p`, whose value was meant) read without a word, the parameter left as written elsewhere. A container `into` (`from`) is honoured directly: the
 //! converted value is written (read) through the same adapter.
 //!
 //! The derives take what `mechanism!` generates and nothing else: a struct with named fields,
@@ -187,9 +189,11 @@ impl<'a> Shape<'a> {
             Direction::Deserialize => quote!(#alias::Deserialize<'de>),
         };
         let bound_text = bounded.iter().map(|p| format!("{p}: {}", quote!(#twin_trait))).collect::<Vec<_>>().join(", ");
-        let (derive, bound_arg) = match dir {
-            Direction::Serialize => (quote!(#alias::Serialize), quote!(serialize = #bound_text)),
-            Direction::Deserialize => (quote!(#alias::Deserialize), quote!(deserialize = #bound_text)),
+        let (derive, bound_arg, deny) = match dir {
+            Direction::Serialize => (quote!(#alias::Serialize), quote!(serialize = #bound_text), quote!()),
+            Direction::Deserialize => {
+                (quote!(#alias::Deserialize), quote!(deserialize = #bound_text), quote!(, deny_unknown_fields))
+            }
         };
         let fields = self.fields.iter().map(|f| {
             let (n, ty) = (&f.name, &f.ty);
@@ -214,7 +218,7 @@ impl<'a> Shape<'a> {
         quote! {
             use #krate as #alias;
             #[derive(#derive)]
-            #[serde(crate = #SERDE_ALIAS, remote = #remote, rename = #rename, bound(#bound_arg))]
+            #[serde(crate = #SERDE_ALIAS, remote = #remote, rename = #rename, bound(#bound_arg) #deny)]
             #[allow(dead_code, non_snake_case, non_camel_case_types)]
             struct #twin #generics #where_clause { #(#fields),* }
             #[automatically_derived]

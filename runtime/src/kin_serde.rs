@@ -8,8 +8,10 @@ use crate::kin::{DetSigns, Health, Kin};
 use crate::solvers::newton::SolveReport;
 use serde::{Deserialize, Serialize};
 
-/// The serialized form of [`Kin`]: the same fields as nested sequences.
+/// The serialized form of [`Kin`]: the same fields as nested sequences. A field it does not
+/// have is an error naming it, as in a generated state.
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub(crate) struct KinRepr {
     x: Vec<f64>,
     q: Vec<f64>,

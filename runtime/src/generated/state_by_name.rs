@@ -10,8 +10,9 @@ use crate::solvers::newton::SolveReport;
 /// number within is written and read as `crate::floats_serde` writes and reads it (each field
 /// through its `within` adapter, whatever the field's type, as the generated state's own impl
 /// hands the whole through it too), so that a state's NaN and infinities read back as they were.
+/// A field it does not have is an error naming it, as in the generated structs within.
 #[derive(Clone, Copy, Debug)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize), serde(deny_unknown_fields))]
 #[cfg_attr(
     feature = "serde",
     serde(bound(
