@@ -145,6 +145,7 @@ pub fn run(model: &mut Model, req: &Request) -> Result<(), Failed> {
             ext.to_string_lossy()
         )));
     }
+    input_column(model)?;
     // The plot's file created first, as `--events` and `--flywheel` are: a path that cannot be
     // written stops before any output. Removed again if no drawing comes to be written into it.
     let plot = crate::output::created(req.plot, "the plot")?;
@@ -164,10 +165,11 @@ fn written(model: &mut Model, req: &Request, plot: Option<OutFile>) -> Result<()
         }
     };
     found.report();
+    let input = &model.inputs()[0];
     let (table, curves) = match found.shape {
-        Shape::Flat(cam, ..) => (flat_table(&cam, &found.inputs, req.deg), vec![("cam profile", cam.profile)]),
+        Shape::Flat(cam, ..) => (flat_table(&cam, input, &found.inputs, req.deg), vec![("cam profile", cam.profile)]),
         Shape::Roller(cam, _) => {
-            (table(&cam, &found.inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
+            (table(&cam, input, &found.inputs, req.deg), vec![("pitch curve", cam.pitch), ("cam profile", cam.profile)])
         }
     };
     let svg = match plot {
@@ -408,6 +410,25 @@ fn with_inputs(text: &str, sample: &dyn Fn(usize) -> String) -> String {
         rest = &after[digits..];
     }
     out + rest
+}
+
+/// The names of the columns the table writes of its own beside the input (and the curves' names
+/// its points' columns are named by): an input named as one of them would name two columns
+/// alike, or take a curve's unit.
+const OWN_COLUMNS: [&str; 6] = ["pitch", "profile", "pitch_radius", "radius", "offset", "pressure_angle"];
+
+/// Refuses an input named as one of the table's own columns ([`OWN_COLUMNS`]), before the
+/// sweep: its name heads the table's first column, as every command's table names it.
+fn input_column(model: &Model) -> Result<(), Failed> {
+    let own = crate::own_columns::Own {
+        command: "kinloop cam",
+        columns: &OWN_COLUMNS,
+        beside: "input's",
+        rename_to: "",
+        written: "its table",
+    };
+    let inputs = model.inputs().iter().map(|n| ("input", n.as_str()));
+    crate::own_columns::check(&own, model.name(), inputs)
 }
 
 /// Refuses a model whose inputs are not one angle: the cam turns with the one input.
@@ -783,39 +804,34 @@ fn report_flat(cam: &FlatFaceProfile, checks: &FlatFaceExtremes, inputs: &[f64],
     }
 }
 
-/// The cam as a table: per sample the input (in the units given), the pitch curve's and the profile's points in the
-/// cam's frame, the pitch curve's radius of curvature and the pressure angle.
-fn table(cam: &CamProfile, inputs: &[f64], deg: bool) -> Table {
+/// The cam as a table: per sample the input `input` (in the units given, under its name as every
+/// command's table has it, where it was `input`), the pitch curve's and the profile's points in
+/// the cam's frame, the pitch curve's radius of curvature and the pressure angle.
+fn table(cam: &CamProfile, input: &str, inputs: &[f64], deg: bool) -> Table {
     let (angle, a) = if deg { (180.0 / std::f64::consts::PI, "deg") } else { (1.0, "rad") };
-    let columns = ["input", "pitch.x", "pitch.y", "profile.x", "profile.y", "pitch_radius", "pressure_angle"];
+    let columns = [input, "pitch.x", "pitch.y", "profile.x", "profile.y", "pitch_radius", "pressure_angle"];
     let mut t = Table::new(columns.iter().map(|c| c.to_string()).collect());
     for (k, &x) in inputs.iter().enumerate() {
         let ([px, py], [cx, cy]) = (cam.pitch[k], cam.profile[k]);
         t.push(vec![x, px, py, cx, cy, cam.pitch_radius[k], cam.pressure_angle[k] * angle]);
     }
     let length = QuantityKind::Length.unit();
-    t.with_units(&[
-        ("input", a),
-        ("pitch", length),
-        ("profile", length),
-        ("pitch_radius", length),
-        ("pressure_angle", a),
-    ])
+    t.with_units(&[(input, a), ("pitch", length), ("profile", length), ("pitch_radius", length), ("pressure_angle", a)])
 }
 
-/// A flat-faced follower's cam as a table: per sample the input (in the units given), the
-/// profile's point in the cam's frame, its radius of curvature, the contact's offset along the
-/// face and the pressure angle.
-fn flat_table(cam: &FlatFaceProfile, inputs: &[f64], deg: bool) -> Table {
+/// A flat-faced follower's cam as a table: per sample the input `input` (in the units given, as
+/// [`table`] has it), the profile's point in the cam's frame, its radius of curvature, the
+/// contact's offset along the face and the pressure angle.
+fn flat_table(cam: &FlatFaceProfile, input: &str, inputs: &[f64], deg: bool) -> Table {
     let (angle, a) = if deg { (180.0 / std::f64::consts::PI, "deg") } else { (1.0, "rad") };
-    let columns = ["input", "profile.x", "profile.y", "radius", "offset", "pressure_angle"];
+    let columns = [input, "profile.x", "profile.y", "radius", "offset", "pressure_angle"];
     let mut t = Table::new(columns.iter().map(|c| c.to_string()).collect());
     for (k, &x) in inputs.iter().enumerate() {
         let [cx, cy] = cam.profile[k];
         t.push(vec![x, cx, cy, cam.radius[k], cam.offset[k], cam.pressure_angle[k] * angle]);
     }
     let length = QuantityKind::Length.unit();
-    t.with_units(&[("input", a), ("profile", length), ("radius", length), ("offset", length), ("pressure_angle", a)])
+    t.with_units(&[(input, a), ("profile", length), ("radius", length), ("offset", length), ("pressure_angle", a)])
 }
 
 /// The named curves (the pitch curve and the profile, or the profile alone) drawn as SVG, the

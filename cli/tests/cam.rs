@@ -61,7 +61,7 @@ fn the_dwell_cam_has_the_radial_follower_s_closed_forms() {
     assert_eq!(
         header,
         [
-            "input [deg]",
+            "phi [deg]",
             "pitch.x [length unit]",
             "pitch.y [length unit]",
             "profile.x [length unit]",
@@ -153,7 +153,7 @@ fn a_flat_face_on_the_dwell_cam_has_the_closed_forms() {
     assert_eq!(
         header,
         [
-            "input [deg]",
+            "phi [deg]",
             "profile.x [length unit]",
             "profile.y [length unit]",
             "radius [length unit]",
@@ -292,6 +292,38 @@ fn a_rocking_flat_face_on_the_eccentric_disc() {
         assert!((row[4] - state[w]).abs() <= 1e-12 * 40.0, "{row:?} vs {state:?}");
         assert!((row[5] - 5.0f64.atan2(state[w].abs())).abs() <= 1e-13, "{row:?}");
     }
+}
+
+/// The table's first column is the input under its name, as every command's table has it (it
+/// was `input [deg]` where a sweep of the same declaration wrote `phi [deg]`); an input named as
+/// one of the table's own columns is refused before the sweep, naming it, as `dynamics` refuses
+/// one named as its own.
+#[test]
+fn the_first_column_is_the_input_by_its_name() {
+    let args = ["--point", "follower", "--guide", "0,1", "--samples", "5", "--deg"];
+    for flat in [false, true] {
+        let mut cam = vec!["cam", &shipped("dwell_cam.kl")].into_iter().map(String::from).collect::<Vec<_>>();
+        cam.extend(args.iter().map(|a| a.to_string()));
+        if flat {
+            cam.push("--flat".into());
+        }
+        let cam: Vec<&str> = cam.iter().map(String::as_str).collect();
+        let (header, rows) = csv(&kinloop(&cam));
+        assert_eq!(header[0], "phi [deg]", "{header:?}");
+        assert_eq!(rows.iter().map(|r| r[0]).collect::<Vec<_>>(), [0.0, 90.0, 180.0, 270.0, 360.0]);
+    }
+    let renamed = std::fs::read_to_string(shipped("dwell_cam.kl")).unwrap().replace("phi", "offset");
+    let file = std::env::temp_dir().join(format!("kinloop-cam-input-offset-{}.kl", std::process::id()));
+    std::fs::write(&file, renamed).unwrap();
+    let out = kinloop(&[&["cam", file.to_str().unwrap()], &args[..]].concat());
+    let _ = std::fs::remove_file(&file);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("kinloop cam writes a column `offset` of its own") && err.contains("rename the input"),
+        "{err}"
+    );
+    assert!(out.stdout.is_empty());
 }
 
 #[test]
