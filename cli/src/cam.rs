@@ -694,6 +694,12 @@ pub(crate) fn point_columns(model: &Model, name: &str, option: &str) -> Result<(
         (Some(x), Some(y)) => Ok((x, y)),
         _ => {
             let points: Vec<&str> = outputs.iter().filter_map(|o| o.strip_suffix(".x")).collect();
+            // Given nothing (an unset shell variable): said so, where `{option} {name}: ... has
+            // no point of that name` read `--point : ...`.
+            if name.trim().is_empty() && !points.is_empty() {
+                let what = format!("the name of a point of {} (its points: {})", model.name(), points.join(", "));
+                return Err(crate::solve::empty(option, &what));
+            }
             // A mechanism of no point: "its points: none" said nothing of how to have one.
             if points.is_empty() {
                 return Err(usage(format!(

@@ -422,7 +422,7 @@ pub fn point(spec: &str, option: &str) -> Result<[f64; 2], Failed> {
 /// The usage error of the option `option` given an empty value (an unset shell variable), which
 /// takes `what`. Written as the other values are, `{option} {spec}`, it read with two spaces and
 /// the number "``" (`--at  is not a list of finite numbers: `` is not a number`).
-fn empty(option: &str, what: &str) -> Failed {
+pub(crate) fn empty(option: &str, what: &str) -> Failed {
     exit::usage(format!("{option} is given nothing: give {what}"))
 }
 

@@ -191,9 +191,10 @@ fn errors_have_carets_and_exit_codes() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// An option of inputs or of a point given nothing (an unset shell variable, `--at "$X"`) is a
-/// usage error saying so and what it takes, where `{option} {value}` read `--at  is not a list of
-/// finite numbers: `` is not a number`, two spaces and an empty number.
+/// An option of inputs, of a point or of a point's name given nothing (an unset shell variable,
+/// `--at "$X"`) is a usage error saying so and what it takes, where `{option} {value}` read
+/// `--at  is not a list of finite numbers: `` is not a number`, two spaces and an empty number,
+/// and `--point : DwellCamRocker has no point of that name`.
 #[test]
 fn an_option_given_nothing_says_so_and_what_it_takes() {
     let (rhombic, four_bar, engine) = (shipped("rhombic_drive.kl"), shipped("four_bar.kl"), shipped("engine.kl"));
@@ -204,6 +205,11 @@ fn an_option_given_nothing_says_so_and_what_it_takes() {
         (vec!["sweep", &four_bar, "--params", params, "--from", "", "--to", "1"], "--from", "a finite number"),
         (vec!["extremes", &four_bar, "--params", params, "--from", "0", "--to", ""], "--to", "a finite number"),
         (vec!["dynamics", &engine, "--speed", "150", "--about", ""], "--about", "a point `x,y` of two finite numbers"),
+        (
+            vec!["cam", &shipped("dwell_cam.kl"), "--point", "", "--guide", "0,1"],
+            "--point",
+            "the name of a point of DwellCamRocker (its points: follower, rocker_pin)",
+        ),
     ] {
         let out = kinloop(&args);
         let err = String::from_utf8_lossy(&out.stderr);
