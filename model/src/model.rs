@@ -912,7 +912,8 @@ impl Model {
     /// Analogs and outputs at a position `q` the caller already solved (the compiled
     /// mechanism's `kinematics_at_flat`): the report carries the residual there, every block's
     /// Jacobian is factorised from the graph. No allocation. A parameter or an input not finite
-    /// is [`StepError::NotFinite`], an unknown of `q` not finite [`StepError::NonFinitePosition`].
+    /// is [`StepError::NotFinite`], an unknown of `q` not finite [`StepError::NonFinitePosition`],
+    /// a configuration out of range [`StepError::InvalidConfig`].
     pub fn kinematics_at(&mut self, x: &[f64], q: &[f64], cfg: &NewtonConfig) -> Result<&State, StepError> {
         self.check_at(x, q)?;
         // A parameter or an input not finite first, as the compiled step's bad-value test
@@ -922,6 +923,10 @@ impl Model {
         // mend, where the step would call it a singular Jacobian or an equation not finite.
         if let Some(u) = q.iter().position(|v| !v.is_finite()) {
             return Err(StepError::NonFinitePosition { unknown: self.unknowns[u].clone(), value: q[u] });
+        }
+        // The analogs read `singular_tol`: a NaN one made every block singular.
+        if let Some(field) = cfg.invalid_field() {
+            return Err(StepError::InvalidConfig(field));
         }
         for (u, reg) in self.at.unknown_regs.iter().enumerate() {
             if let Some(reg) = reg {

@@ -342,6 +342,29 @@ fn kinematics_at_names_a_parameter_or_input_not_finite() {
     }
 }
 
+/// `Model::kinematics_at` with a configuration out of range names its field, as the compiled
+/// `kinematics_at_flat` does: the analogs read `singular_tol`, and a NaN one made a regular
+/// position "singular" (a negative one was taken).
+#[test]
+fn kinematics_at_names_a_configuration_out_of_range() {
+    let compiled = fx::FourBar { a: 1.0, b: 3.0, c: 2.5, d: 3.2 };
+    let mut model = read(fx::FOUR_BAR_TEXT);
+    set(&mut model, &[("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)]);
+    let q = compiled.kinematics_flat(&[0.5], &[0.5, 1.5], &NewtonConfig::default()).unwrap().q;
+    for tol in [f64::NAN, -1.0] {
+        let cfg = NewtonConfig::default().with_singular_tol(tol);
+        let e = model.kinematics_at(&[0.5], &q, &cfg).map(drop).unwrap_err();
+        assert!(matches!(e, StepError::InvalidConfig("singular_tol")), "{tol}: {e:?}");
+        let c_err = kinloop_runtime::Compiled(&compiled).kinematics_at(&[0.5], &q, &cfg).unwrap_err();
+        let k = model.kernel(SweepConfig::default()).unwrap();
+        let r_err = k.kinematics_at(&Heap([0.5].into()), &Heap(q.into()), &cfg).unwrap_err();
+        for e in [c_err, r_err] {
+            let Error::InvalidArgument(msg) = &e else { panic!("{tol}: {e:?}") };
+            assert!(msg.contains("NewtonConfig::singular_tol is out of its valid range, [0, 1)"), "{msg}");
+        }
+    }
+}
+
 /// The evaluations at a given position write into the caller's buffer only when it has one
 /// place per value: a short one was filled in part, a long one kept what its extra places held,
 /// and both returned `Ok`.

@@ -95,6 +95,27 @@ where
     block_failure(m, block, BlockFailure::InvalidConfig { field }, x, guess, &NewtonConfig::default())
 }
 
+/// [`config_failure`] of the analogs at a position the caller gives (`kinematics_at_flat`,
+/// `sensitivities_at_flat`), which read the configuration's `singular_tol`: there is no guess,
+/// and the position is the caller's, named as such by the named API (a NaN tolerance made
+/// every block "singular", a negative one was taken).
+#[cold]
+#[inline(never)]
+pub fn config_failure_at<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    block: usize,
+    field: &'static str,
+    x: &[f64; NI],
+) -> Error
+where
+    M: Mechanism<N, NI, NO>,
+{
+    if let Some(e) = bad_values::<M, N, NI, NO>(m, x, None) {
+        return e;
+    }
+    block_error(BlockFailure::InvalidConfig { field }, location::<M, N, NI, NO>(x, Some(block)))
+}
+
 /// The error for a block whose factorisation failed: a bad value, an equation outside its
 /// domain (`bad_row`, a non-finite row), or a singular position.
 #[cold]

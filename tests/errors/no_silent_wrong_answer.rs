@@ -3,8 +3,8 @@
 //! solver: circle-intersection closed forms computed here, and loop magnitudes (sums of link
 //! lengths) for residuals.
 
-use kinloop::{Error, Mechanism, NewtonConfig};
-use kinloop_fixtures::{FourBar, FourBarUnknowns, SlottedLever};
+use kinloop::{Error, Mechanism, NewtonConfig, Sensitivities};
+use kinloop_fixtures::{FourBar, FourBarSens, FourBarUnknowns, SlottedLever};
 use std::f64::consts::PI;
 
 use crate::support::{angle_apart, four_bar_angles, four_bar_limit, tol};
@@ -241,6 +241,38 @@ fn invalid_newton_configurations_are_named() {
             other => panic!("{other:?}"),
         }
     }
+}
+
+/// The analogs at a position the caller solved read the configuration's `singular_tol`: one out
+/// of range is named there as it is by a solve, not taken. A NaN tolerance made a regular
+/// position (pivot ratio 0.5) "singular, reached only linearly", a negative one was accepted.
+#[test]
+fn invalid_newton_configurations_are_named_at_a_given_position() {
+    let (x, sens) = ([0.3], FourBarSens { a: CRANK_ROCKER.a, b: CRANK_ROCKER.b, c: CRANK_ROCKER.c, d: CRANK_ROCKER.d });
+    let newton = FourBarNewton { a: CRANK_ROCKER.a, b: CRANK_ROCKER.b, c: CRANK_ROCKER.c, d: CRANK_ROCKER.d };
+    let q = CRANK_ROCKER.kinematics_flat(&x, &CRANK_ROCKER.guess(0.3).into(), &NewtonConfig::default()).unwrap().q;
+    for (cfg, field) in [
+        (NewtonConfig::default().with_singular_tol(f64::NAN), "singular_tol"),
+        (NewtonConfig::default().with_singular_tol(-1.0), "singular_tol"),
+        (NewtonConfig::default().with_residual_tol(f64::NAN), "residual_tol"),
+        (NewtonConfig::default().with_max_iterations(u32::MAX), "max_iterations"),
+    ] {
+        for (what, r) in [
+            ("closed form", CRANK_ROCKER.kinematics_at_flat(&x, &q, &cfg).map(drop)),
+            ("Newton", newton.kinematics_at_flat(&x, &q, &cfg).map(drop)),
+            ("sensitivities", sens.sensitivities_at_flat(&x, &q, &cfg).map(drop)),
+        ] {
+            match r {
+                Err(Error::InvalidArgument(msg)) => {
+                    assert!(msg.contains(&format!("NewtonConfig::{field} is out of its valid range")), "{what}: {msg}")
+                }
+                other => panic!("{what}, {field}: {other:?}"),
+            }
+        }
+    }
+    // The same position with a valid configuration: regular, far from the tolerance.
+    let k = CRANK_ROCKER.kinematics_at_flat(&x, &q, &NewtonConfig::default()).unwrap();
+    assert!(k.health.min_pivot > 0.1, "{:?}", k.health);
 }
 
 #[test]
