@@ -219,13 +219,20 @@ fn what_it_cannot_search_is_an_error() {
 #[test]
 fn a_start_a_hair_inside_a_limit_position_is_passed_over() {
     // Solved (its pivot ratio above the point solve's tolerance), but nearer the limit position
-    // than a sweep starts from: the search goes on to the next sample.
+    // than a sweep starts from: the search goes on to the next sample. The sweep from it is a
+    // singular start, as `SweepConfig::singular_pivot` says of a first sample below it, at the
+    // start: it was a pass "near a singular position" a step on, with the advice to lower
+    // `singular_pivot` that a slide brushing its pivot takes.
     let m = short_reach(1.0);
     let lim = four_bar_limit(1.0, 3.2, 4.0);
     let at = lim - 1e-13;
     let q = m.position(at, &m.guess(at)).expect("assembles a hair inside").0;
     let start = m.reachable(at, 0.1, &q, 3);
-    assert!(matches!(start, Err(Error::NearSingular { .. })), "{start:?}");
+    let Err(Error::SingularStart { pivot_ratio, singular_pivot, at: ref located }) = start else { panic!("{start:?}") };
+    assert!(pivot_ratio < singular_pivot, "{start:?}");
+    assert_eq!(located.inputs[0].1, at, "{start:?}");
+    let first = m.kinematics(at, &q).unwrap();
+    assert_eq!(pivot_ratio, first.health.min_pivot);
     let near = assembly_near(&m, [at], 360).unwrap().expect("it assembles");
     assert_eq!(near.found, [at - TAU / 360.0]);
     assert_close!(near.reach.to[0], lim, tol::LOCATED, "{near:?}");

@@ -1152,6 +1152,15 @@ where
         let x = path.at_tau(tau_new);
         Err(match (outcome, failure) {
             (Outcome::Fail, Some(e)) => e,
+            // A first sample below `singular_pivot` is a singular start, as that field says,
+            // whatever the trial step met: a start 1e-13 rad inside a four-bar's limit position
+            // (pivot ratio 2.7e-7) was told it "passes within" one a step on and to lower
+            // `singular_pivot`, the advice for a slide brushing its pivot.
+            _ if self.tau == 0.0 && k.health().min_pivot < self.cfg.singular_pivot => Error::SingularStart {
+                pivot_ratio: k.health().min_pivot,
+                singular_pivot: self.cfg.singular_pivot,
+                at: self.location(path.from.as_ref(), Some(weakest)),
+            },
             (Outcome::Far, _) if self.spare().health().min_pivot < self.cfg.singular_pivot => Error::NearSingular {
                 pivot_ratio: self.spare().health().min_pivot,
                 singular_pivot: self.cfg.singular_pivot,
