@@ -123,7 +123,10 @@ pub enum EventKind {
     /// continuous but the velocity analogs jump (the acceleration is unbounded there), as a
     /// function with a corner in the equations makes (`abs`, `min`, `max`, `clamp`: e.g. a
     /// uniform-velocity cam law). A sweep records it and goes on; `x` and `q` are the first
-    /// state past it, within the sweep's smallest step of the corner.
+    /// state past it, within the sweep's smallest step of the corner. A corner at the start or
+    /// the end of a sweep's range (within that step) or of a trace's is not recorded, whichever
+    /// way the range goes: the range holds one of its sides only. `sweep_at` records one at an
+    /// input between two others, at that input.
     Kink,
 }
 

@@ -244,3 +244,61 @@ fn a_step_of_a_law_stops_every_sweep_at_it_and_a_steep_ramp_none() {
     }
     assert!(stopped >= 100 && ramps >= 40, "{stopped} steps, {ramps} ramps");
 }
+
+/// A corner exactly at an end of the range is at an end of the path swept, one of its sides
+/// only within the range: no sweep lists it, whichever way it goes, at every scale (the state
+/// at the corner carries the analogs of `abs` at 0 taken as +1). A sweep from the corner listed
+/// it at `1 - 9e-14` going down and not going up; one to it, at 1 coming up and not coming down.
+#[test]
+fn a_kink_at_an_end_of_the_range_is_listed_by_no_sweep() {
+    for k in [2.0, 2e-6, 2e6] {
+        let m = Kinked { k };
+        for (from, to) in [(1.0, 0.0), (1.0, 2.0), (0.0, 1.0), (2.0, 1.0)] {
+            for samples in [2, 5] {
+                let mut sweep = m.sweep(from, to, samples, &m.guess(from)).unwrap();
+                let states: Vec<_> = sweep.by_ref().collect::<Result<_, _>>().unwrap();
+                assert_eq!(states.len(), samples, "k = {k}, {from} to {to}");
+                for st in &states {
+                    let phi = st.input.phi;
+                    assert!((st.q.s - k * (phi - 1.0).abs()).abs() <= 1e-15 * k, "k = {k}: s({phi}) = {}", st.q.s);
+                }
+                assert!(sweep.events().is_empty(), "k = {k}, {from} to {to}, {samples}: {:?}", sweep.events());
+            }
+        }
+        // A hundredth of the input inside either end, the corner is the range's, though a sweep
+        // of few halvings (the smallest step a sixteenth of a quarter radian) brackets it within
+        // its first or its last step (two smallest steps long at most).
+        let coarse = kinloop::SweepConfig::default().with_max_halvings(4);
+        for (from, to) in [(0.99, 2.0), (1.01, 0.0), (0.0, 1.01), (2.0, 0.99)] {
+            let mut sweep = m.sweep(from, to, 2, &m.guess(from)).unwrap().with_config(coarse);
+            assert_eq!(sweep.by_ref().filter(Result::is_ok).count(), 2, "k = {k}, {from} to {to}");
+            let kinks = sweep.events();
+            assert_eq!(kinks.len(), 1, "k = {k}, {from} to {to}: {kinks:?}");
+            assert!((kinks[0].x[0] - 1.0).abs() <= 2.0 * 0.25 / 16.0, "k = {k}, {from} to {to}: {kinks:?}");
+        }
+    }
+}
+
+/// A corner at an input of `sweep_at` between two others lies inside the path through them:
+/// listed once, at that input, whichever way the path goes; at the path's first or last input,
+/// as at a sweep's end, not at all.
+#[test]
+fn sweep_at_lists_a_kink_at_an_input_once_whichever_way() {
+    for k in [2.0, 2e-6, 2e6] {
+        let m = Kinked { k };
+        for inputs in [&[0.0, 1.0, 2.0][..], &[2.0, 1.0, 0.0], &[0.0, 1.0, 1.0, 2.0], &[2.0, 1.0, 1.0, 0.0]] {
+            let run = m.sweep_at(inputs.iter().copied(), &m.guess(inputs[0]));
+            assert!(run.is_completed(), "k = {k}: {:?}", run.stop);
+            assert_eq!(run.states.len(), inputs.len());
+            assert_eq!(run.events.len(), 1, "k = {k}, {inputs:?}: {:?}", run.events);
+            let kink = &run.events[0];
+            assert_eq!((kink.kind, kink.x[0]), (EventKind::Kink, 1.0), "k = {k}, {inputs:?}");
+            assert!(kink.q[0].abs() <= 1e-15 * k, "k = {k}, {inputs:?}: s = {} at the kink", kink.q[0]);
+        }
+        for inputs in [[1.0, 2.0], [2.0, 1.0], [0.0, 1.0], [1.0, 0.0]] {
+            let run = m.sweep_at(inputs, &m.guess(inputs[0]));
+            assert!(run.is_completed(), "k = {k}: {:?}", run.stop);
+            assert!(run.events.is_empty(), "k = {k}, {inputs:?}: {:?}", run.events);
+        }
+    }
+}

@@ -86,6 +86,34 @@ fn the_abs_slider_is_traced_across_its_kink_at_every_scale() {
     assert!(t.points.iter().all(|p| (p.q[0] - 2.0 * (p.x[0] - 1.0).abs()).abs() <= ON_LAW * 2.0));
 }
 
+/// A corner exactly at the start of a trace or at the end of its segment is not one the curve
+/// traced passes through: no trace lists it, whichever way it goes, at every scale, and none
+/// ends outside its segment. Traced down to it, it was listed 2 ulps past the end, where the
+/// last point lay too; traced up to it or from it downwards, it was listed at the end.
+#[test]
+fn a_kink_at_an_end_of_the_trace_is_not_listed() {
+    for k in [2.0, 2e-6, 2e6] {
+        let m = Kinked { k };
+        for (from, to) in [(1.0, 0.0), (1.0, 2.0), (0.0, 1.0), (2.0, 1.0)] {
+            let t = m.trace_curve(from, to, &m.guess(from), &TraceConfig::default()).unwrap();
+            assert!(t.kinks.is_empty(), "k = {k}, {from} to {to}: {:?}", t.kinks);
+            assert!(t.folds.is_empty() && t.crossings.is_empty() && !t.truncated, "k = {k}, {from} to {to}");
+            let toward = |x: f64| (x - from) * (to - from).signum();
+            for p in &t.points {
+                let phi = p.x[0];
+                assert!(toward(phi) >= 0.0 && toward(phi) <= toward(to), "k = {k}, {from} to {to}: a point at {phi}");
+                assert!((p.q[0] - k * (phi - 1.0).abs()).abs() <= ON_LAW * k, "k = {k}: s({phi}) = {}", p.q[0]);
+            }
+            let last = t.points.last().unwrap().x[0];
+            assert!(toward(last) > toward(to) - 0.02, "k = {k}, {from} to {to}: the trace ended at {last}");
+            // Traced to the corner, it ends there.
+            if to == 1.0 {
+                assert_eq!(last, 1.0, "k = {k}, from {from}");
+            }
+        }
+    }
+}
+
 kinloop::mechanism! {
     /// A lever `r` tilted by a slider's travel `x` through a corner: `sin(th) = |x - r| / (2 r)`,
     /// its slope `d th / dx` (about `1 / r`) jumping at `x = r`.

@@ -114,6 +114,11 @@ pub const MAX_SLOPE_CHANGE: f64 = 0.25;
 /// inputs, or of the path's fraction, can no longer resolve.
 pub const MAX_TURNS: f64 = 1e6;
 
+/// The largest step, against the step scale, across which a kink next to an end of the range is
+/// taken to lie at that end (and is not listed, see [`SweepOf::past_kink`]): far above the
+/// default smallest step (`2^-40`), far below any step a configuration of few halvings stops at.
+const END_CORNER: f64 = 1e-9;
+
 /// The inputs' sines and cosines are advanced by rotation (a few units in the last place off
 /// libm's) only from a position whose smallest pivot ratio is at least this: there the positions
 /// amplify them at most about tenfold, staying within `1e-14` of the loop's size. Nearer a
@@ -236,6 +241,9 @@ pub struct SweepOf<K: Kernel, S> {
     /// A range longer than [`MAX_TURNS`], found by `new` and returned by the first `next`.
     too_long: Option<Error>,
     events: Vec<Event>,
+    /// A corner of the path at its start and at its end (within the smallest step), not listed
+    /// among the events: the range holds one of its sides only (see [`SweepOf::past_kink`]).
+    corners_at_ends: [Option<Event>; 2],
     done: bool,
     /// `started && !done && invalid.is_none()`: the steady state, where a sample needs one test
     /// of this rather than one of each.
@@ -394,6 +402,7 @@ where
             invalid: None,
             too_long,
             events: Vec::new(),
+            corners_at_ends: [None, None],
             done: false,
             stepping: false,
             _s: PhantomData,
@@ -471,6 +480,13 @@ where
     /// Singular positions met so far.
     pub fn events(&self) -> &[Event] {
         &self.events
+    }
+
+    /// A corner of the path met at the start of the range and at its end, within the sweep's
+    /// smallest step of it, each at the end itself: not among [`SweepOf::events`], where a corner
+    /// is one the range passes through. `sweep_at` lists one at an input between two sweeps.
+    pub(crate) fn corners_at_ends(&self) -> &[Option<Event>; 2] {
+        &self.corners_at_ends
     }
 
     /// The last accepted state (the last sample, or the last point before a stop). (Not named
@@ -1260,8 +1276,32 @@ where
                 return None;
             }
         }
-        let q = n.q().to_vec();
-        self.events.push(Event { kind: EventKind::Kink, x: x.as_ref().to_vec(), tau: tau_new, q, block: None });
+        // A corner within the smallest step of an end of the range (at most `END_CORNER` of the
+        // step scale: a configuration of few halvings brackets it no finer, and lists it as any
+        // other) lies at that end, and the range holds one of its sides only: not a corner of
+        // the path swept. Which side's analogs the state at the corner carries is the equations'
+        // own choice (`abs` takes its derivative at 0 as +1), and whether a step met the jump
+        // went by it: a sweep from the corner listed a kink a hair inside one way and none the
+        // other, and so did a sweep to it. Kept aside at the end itself: a corner at an input of
+        // `sweep_at` lies between two of its sweeps.
+        let fine = dt <= END_CORNER * self.scale();
+        let end = if fine && self.tau == 0.0 {
+            Some((0, self.path.from.as_ref().to_vec(), k.q().to_vec()))
+        } else if fine && tau_new == 1.0 {
+            Some((1, x.as_ref().to_vec(), n.q().to_vec()))
+        } else {
+            None
+        };
+        match end {
+            Some((end, x, q)) => {
+                let tau = end as f64;
+                self.corners_at_ends[end] = Some(Event { kind: EventKind::Kink, x, tau, q, block: None });
+            }
+            None => {
+                let (x, q) = (x.as_ref().to_vec(), n.q().to_vec());
+                self.events.push(Event { kind: EventKind::Kink, x, tau: tau_new, q, block: None });
+            }
+        }
         self.tau = tau_new;
         Some(n)
     }

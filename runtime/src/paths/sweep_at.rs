@@ -16,8 +16,10 @@ use crate::mechanism::kernel::{Kernel, KinOf, Q, X, check_inputs_finite, check_s
 /// angles, a motion law). `guess` at the first input picks the assembly mode. The first error
 /// stops it; the result keeps the states before it, says why and where it stopped (a limit
 /// position between two inputs is located as in a sweep) and lists the events met
-/// ([`SweepResult::into_result`] for `?`). An input of the list that is not finite stops it
-/// there with [`Error::NonFinite`] naming the input (the states before it kept).
+/// ([`SweepResult::into_result`] for `?`): a kink at an input between two others once, at that
+/// input, and none at the first or the last input, as a sweep lists none at its ends. An input
+/// of the list that is not finite stops it there with [`Error::NonFinite`] naming the input (the
+/// states before it kept).
 ///
 /// Each state is at its own input but where the configuration says
 /// [`AtSingular::Continue`](crate::AtSingular::Continue): there an input at a singular crossing,
@@ -59,6 +61,11 @@ fn sweep_at_within<K: Kernel>(
     if let Err(e) = check_collected_within("`sweep_at`", "states", inputs.size_hint().0, bytes_each, instead, budget) {
         return SweepResult::new(states, Some(e), events);
     }
+    // A corner the last stretch met at its end, the input of the last state kept: listed only
+    // where the path goes on from there.
+    let mut joint: Option<Event> = None;
+    // Whether the path came to that input from another (it is not the path's first).
+    let mut arrived = false;
     for x in inputs {
         if states.len() == most {
             let count = most + 1;
@@ -73,32 +80,53 @@ fn sweep_at_within<K: Kernel>(
         if let Err(e) = check_inputs_finite(m, &x) {
             return SweepResult::new(states, Some(e), events);
         }
+        // Whether the path moves on from the last state kept (not at a repeated input).
+        let moved = states.last().is_some_and(|p| p.x() != x.as_ref());
         // From the last state kept (none before the first input).
-        let stretch = match states.last() {
-            Some(p) if p.x() == x.as_ref() => Ok((p.clone(), Vec::new())),
+        let none = || (Vec::new(), [None, None]);
+        let (result, (met, [at_start, at_end])) = match states.last() {
+            Some(p) if p.x() == x.as_ref() => (Ok(p.clone()), none()),
             Some(p) => {
                 // From the last state, in the kernel's storage.
                 let (mut from, mut q) = (x.clone(), guess.clone());
                 from.as_mut().copy_from_slice(p.x());
                 q.as_mut().copy_from_slice(p.q());
-                SweepOf::<&K, KinOf<K>>::over(m, from, x.clone(), 2, q)
-                    .map_err(|e| (e, Vec::new()))
-                    .and_then(stretch_end)
-                    .map(|(k, met)| (at_input(m, k, &x), met))
+                match SweepOf::<&K, KinOf<K>>::over(m, from, x.clone(), 2, q) {
+                    Ok(sweep) => {
+                        let (k, met) = stretch_end(sweep);
+                        (k.map(|k| at_input(m, k, &x)), met)
+                    }
+                    Err(e) => (Err(e), none()),
+                }
             }
-            None => SweepOf::<&K, KinOf<K>>::over(m, x.clone(), x, 1, guess.clone())
-                .map_err(|e| (e, Vec::new()))
-                .and_then(stretch_end),
+            None => match SweepOf::<&K, KinOf<K>>::over(m, x.clone(), x, 1, guess.clone()) {
+                Ok(sweep) => stretch_end(sweep),
+                Err(e) => (Err(e), none()),
+            },
         };
-        match stretch {
-            Ok((k, met)) => {
-                events.extend(met);
+        // A corner at the input the stretch started from lies between it and the stretch before,
+        // inside the path through the inputs: listed once, at that input, whichever of the two
+        // saw it (the state there carries one side's analogs: the stretch on the other side sees
+        // the jump). The path's own ends are not listed, as a sweep lists neither of its own.
+        if moved
+            && let Some(mut corner) = joint.take().or(at_start.filter(|_| arrived))
+            && let Some(p) = states.last()
+        {
+            corner.x = p.x().to_vec();
+            corner.q = p.q().to_vec();
+            events.push(corner);
+        }
+        events.extend(met);
+        match result {
+            Ok(k) => {
+                // A repeated input keeps the corner at its input.
+                if moved {
+                    joint = at_end;
+                    arrived = true;
+                }
                 states.push(k);
             }
-            Err((e, met)) => {
-                events.extend(met);
-                return SweepResult::new(states, Some(e), events);
-            }
+            Err(e) => return SweepResult::new(states, Some(e), events),
         }
     }
     SweepResult::new(states, None, events)
@@ -117,18 +145,22 @@ fn at_input<K: Kernel>(m: &K, k: KinOf<K>, x: &X<K>) -> KinOf<K> {
     m.kinematics(x, &guess, &m.solver_config().newton).unwrap_or(k)
 }
 
-/// The last state of a sweep run to its end, with the events it met; its error otherwise.
-#[allow(clippy::type_complexity)]
-fn stretch_end<K: Kernel>(sweep: SweepOf<K, KinOf<K>>) -> Result<(KinOf<K>, Vec<Event>), (Error, Vec<Event>)> {
-    let run = sweep.run();
-    let events = run.events.clone();
-    match run.into_result() {
-        Ok(mut states) => match states.pop() {
-            Some(k) => Ok((k, events)),
-            None => Err((Error::InvalidArgument("a sweep without samples".into()), events)),
-        },
-        Err(e) => Err((e, events)),
+/// What a stretch's sweep met: its events, and a corner of the path at its start and at its end
+/// (see [`SweepOf::corners_at_ends`]).
+type Met = (Vec<Event>, [Option<Event>; 2]);
+
+/// The last state of a sweep run to its end, or its error, with what it met.
+fn stretch_end<K: Kernel>(mut sweep: SweepOf<K, KinOf<K>>) -> (Result<KinOf<K>, Error>, Met) {
+    let mut last = None;
+    while let Some(r) = sweep.next_kin() {
+        let stop = r.is_err();
+        last = Some(r);
+        if stop {
+            break;
+        }
     }
+    let last = last.unwrap_or_else(|| Err(Error::InvalidArgument("a sweep without samples".into())));
+    (last, (sweep.events().to_vec(), sweep.corners_at_ends().clone()))
 }
 
 #[cfg(test)]

@@ -154,7 +154,8 @@ pub struct TracedOf<Q, X> {
     /// The kinks passed ([`EventKind::Kink`]): corners of the curve, where its velocity analogs
     /// jump with the Jacobian regular (`abs`, `min`, `max`, `clamp` in the equations), located
     /// within rounding of the input. The input goes on across a kink in the direction it had;
-    /// [`TracedOf::points`] holds the corner too.
+    /// [`TracedOf::points`] holds the corner too. A corner at the trace's start or at an end of
+    /// its segment is not listed: the curve traced holds one of its sides only.
     pub kinks: Vec<Event>,
     /// The branch points passed ([`EventKind::SingularCrossing`]): where the curve followed
     /// crosses another (a four-bar at a change point, all its links in line), the Jacobian
@@ -419,13 +420,34 @@ pub fn trace_curve_of<K: Kernel>(
                 let walked_before = walked;
                 walked += (past.z(&metric) - p.z(&metric)).norm();
                 let listed_at_walk = if listed_past { walked } else { walked_before };
+                let first_step = out.points.len() == 1;
                 p = past;
                 crossed = None;
                 if left_path(&p) {
                     break;
                 }
+                // A corner at the trace's start or at an end of its segment (within the rounding
+                // `left_path` allows) is not one the curve traced passes through: one side of it
+                // only is traced, and the state there carries one side's analogs or the other's
+                // (`abs` takes its derivative at 0 as +1), so that it was listed one way and not
+                // the other, once 2 ulps past the end of the segment. Not listed; a corner just
+                // past the end is the curve's point at the end itself.
+                let kink = matches!(&event, Some(e) if e.kind == EventKind::Kink);
+                let event = match event {
+                    Some(e) if kink => {
+                        let at_end = p.sigma.abs() >= path.len * (1.0 - 1e-12);
+                        if at_end && p.sigma.abs() > path.len {
+                            let sigma = path.len.copysign(p.sigma);
+                            let Ok(q) = m.positions(&path.at_sigma(sigma), &p.q, &cfg) else { break };
+                            p = CurvePoint { q, sigma, tangent: p.tangent };
+                        }
+                        let at_start = first_step && p.sigma.abs() <= path.len * 1e-12;
+                        (!at_end && !at_start).then_some(e)
+                    }
+                    event => event,
+                };
                 // Past a crossing, or moved on from one (no event): beside it still.
-                just_crossed = !matches!(&event, Some(e) if e.kind == EventKind::Kink);
+                just_crossed = !kink;
                 match event {
                     Some(event) if event.kind == EventKind::Kink => out.kinks.push(event),
                     Some(event) => {
