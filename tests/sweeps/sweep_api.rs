@@ -326,3 +326,43 @@ fn crank_body() -> Body {
         rotation: Rotation::Input(0),
     }
 }
+
+/// A sweep that stops at a limit position has no item after its error, however often asked,
+/// and says so (it told of the samples it would not reach); nor after its last sample. Its
+/// upper bound is never below the items that follow.
+#[test]
+fn a_stopped_sweep_is_fused_and_says_it_has_nothing_left() {
+    fn fused<I: std::iter::FusedIterator>(i: I) -> I {
+        i
+    }
+    let m = rocker();
+    let sweep = || fused(m.sweep(0.0, limit(&m) + 0.5, 10, &m.guess(0.0)).unwrap());
+    // Seven samples before the limit position, and the stop.
+    let total = sweep().count();
+    assert_eq!(total, 8);
+    let mut sweep = sweep();
+    let mut items = 0;
+    loop {
+        let (low, high) = sweep.size_hint();
+        let left = total - items;
+        assert!(low <= left && high.is_some_and(|h| h >= left), "{items}: {low}, {high:?} for {left} items");
+        match sweep.next() {
+            Some(Ok(_)) => items += 1,
+            Some(Err(e)) => {
+                assert!(matches!(e, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{e}");
+                break;
+            }
+            None => panic!("the sweep ended without its stop"),
+        }
+    }
+    assert_eq!(items, 7);
+    for _ in 0..3 {
+        assert_eq!(sweep.size_hint(), (0, Some(0)));
+        assert!(sweep.next().is_none());
+    }
+    let mut whole = m.sweep(0.0, 1.0, 3, &m.guess(0.0)).unwrap();
+    assert_eq!(whole.size_hint(), (0, Some(3)));
+    assert_eq!(whole.by_ref().filter(Result::is_ok).count(), 3);
+    assert_eq!(whole.size_hint(), (0, Some(0)));
+    assert!(whole.next().is_none() && whole.next().is_none());
+}

@@ -177,6 +177,10 @@ pub type Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> = Swe
 /// A lazy sweep over any [`Kernel`]: a compiled mechanism's ([`Sweep`]) or a mechanism's read
 /// at run time. Items are `Result<S, Error>` with `S` the state type (one the kernel's state
 /// converts into). The one implementation of the sweep, its events and its table.
+///
+/// An error ends the sweep: after it, as after the last sample, every item is `None` (the
+/// iterator is fused), and [`Iterator::size_hint`] says so. Until then its upper bound is the
+/// samples left and its lower bound zero, since any step may stop the sweep.
 pub struct SweepOf<K: Kernel, S> {
     m: K,
     d: K::Dims,
@@ -1397,8 +1401,18 @@ where
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        (0, Some(self.samples.saturating_sub(self.next)))
+        // A sweep stopped by an error has no item left, whatever samples it did not reach.
+        let left = if self.done { 0 } else { self.samples.saturating_sub(self.next) };
+        (0, Some(left))
     }
+}
+
+/// After its last sample or an error, `next` is `None` for ever (see [`SweepOf`]).
+impl<K, S> std::iter::FusedIterator for SweepOf<K, S>
+where
+    K: Kernel,
+    S: From<KinOf<K>>,
+{
 }
 
 #[cfg(test)]
