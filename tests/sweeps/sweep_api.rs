@@ -366,3 +366,38 @@ fn a_stopped_sweep_is_fused_and_says_it_has_nothing_left() {
     assert_eq!(whole.size_hint(), (0, Some(0)));
     assert!(whole.next().is_none() && whole.next().is_none());
 }
+
+/// A range that ends exactly at a limit position or a change point stops there with the event at
+/// its end, on the range: located past it by the rounding (the limit position 2e-16 of the path
+/// beyond `to`, the crossing 2e-13), its fraction of the path was above 1 and its input outside
+/// the range swept, and `reachable` gave an end past the range it searched.
+#[test]
+fn an_event_at_the_end_of_the_range_lies_on_it() {
+    let m = rocker();
+    let lim = limit(&m);
+    for to in [lim, -lim] {
+        for samples in [2, 5] {
+            let mut sweep = m.sweep(0.0, to, samples, &m.guess(0.0)).unwrap();
+            let stop = sweep.by_ref().find_map(Result::err).expect("stopped");
+            assert!(matches!(stop, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{stop}");
+            let [event] = sweep.events() else { panic!("{:?}", sweep.events()) };
+            assert!(event.tau <= 1.0 && (event.tau - 1.0).abs() <= tol::LOCATED, "{to}, {samples}: {event:?}");
+            assert!(event.x[0].abs() <= lim, "{to}, {samples}: {event:?}");
+        }
+        let reach = m.reachable(0.0, to.abs(), &m.guess(0.0), 5).unwrap();
+        assert!(reach.from.phi >= -lim && reach.to.phi <= lim, "{reach:?}");
+        for event in [reach.from_event, reach.to_event] {
+            assert!(event.is_some_and(|e| e.tau <= 1.0), "{to}");
+        }
+    }
+    // A parallelogram's change point at the end of the range.
+    let m = FourBar { a: 1.0, b: 3.0, c: 1.0, d: 3.0 };
+    for (from, samples) in [(0.5, 5), (PI - 0.5, 2)] {
+        let mut sweep = m.sweep(from, PI, samples, &m.guess(from)).unwrap();
+        let stop = sweep.by_ref().find_map(Result::err).expect("stopped");
+        assert!(matches!(stop, Error::SweepStopped { kind: EventKind::SingularCrossing, .. }), "{stop}");
+        let [event] = sweep.events() else { panic!("{:?}", sweep.events()) };
+        assert!(event.tau <= 1.0 && event.x[0] <= PI, "{from}: {event:?}");
+        assert!((event.x[0] - PI).abs() <= tol::LOCATED, "{from}: {event:?}");
+    }
+}

@@ -289,6 +289,26 @@ fn found_within<Q, X: Store>(
         && (p.sigma - start.sigma).abs() <= (12.0 * reach + 0.25) * metric.sigma
 }
 
+/// The event of kind `kind` at the point `p` the sweep's diagnosis located on `path`, on the swept
+/// range: one located past an end by no more than the rounding [`found_within`] allows (a limit
+/// position or a crossing at `to` itself, located 2e-16 and 2e-13 of the path beyond it) is at
+/// that end. Outside, its fraction of the path above 1 and its input past `to`, it read as an
+/// event beyond the range that the sweep never reached, and `reachable` gave an end past the
+/// range it searched.
+fn event_on_path<Q: Store, X: Store>(
+    kind: EventKind,
+    path: &Path<X>,
+    p: &CurvePoint<Q>,
+    block: Option<(usize, crate::events::BlockInfo)>,
+) -> Event {
+    let mut event = curve::event_at(kind, path, p, block);
+    if !(0.0..=1.0).contains(&event.tau) {
+        event.tau = event.tau.clamp(0.0, 1.0);
+        event.x = path.at_tau(event.tau).as_ref().to_vec();
+    }
+    event
+}
+
 /// `Err(Error::NonFinite)` naming the end `what` of a range where a value of `v` is not finite.
 pub(crate) fn check_finite<K: Kernel>(what: &'static str, v: &[f64], m: &K) -> Result<(), Error> {
     match v.iter().find(|x| !x.is_finite()) {
@@ -1101,7 +1121,7 @@ where
                     if curve::pivot_at(&self.m, &path.at_sigma(fold.sigma), &fold.q)
                         < locate::fold_pivot(&path, &metric, fold.sigma) =>
                 {
-                    let ev = curve::event_at(EventKind::LimitPosition, &path, &fold, block_of(weakest));
+                    let ev = event_on_path(EventKind::LimitPosition, &path, &fold, block_of(weakest));
                     let at = self.location(&ev.x, Some(weakest));
                     self.events.push(ev);
                     return Err(Error::SweepStopped { kind: EventKind::LimitPosition, at });
@@ -1133,7 +1153,7 @@ where
                     let beyond = self.m.kinematics_at(&path.at_sigma(past.sigma), &past.q, &newton).ok();
                     let flipped =
                         beyond.and_then(|n| n.health().det_signs.first_difference(&self.signs)).unwrap_or(weakest);
-                    self.events.push(curve::event_at(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
+                    self.events.push(event_on_path(EventKind::SingularCrossing, &path, &at, block_of(flipped)));
                     // The assembly modes past the crossing: the near side's with the flipped block's
                     // turned over.
                     let mut far = self.signs;
