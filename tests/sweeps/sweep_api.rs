@@ -401,3 +401,37 @@ fn an_event_at_the_end_of_the_range_lies_on_it() {
         assert!((event.x[0] - PI).abs() <= tol::LOCATED, "{from}: {event:?}");
     }
 }
+
+/// A sweep iterated up to its stop, then run or tabled, says it stopped, and why: it said
+/// `Completed` with no states (and an empty table), of a sweep that met a limit position.
+#[test]
+fn a_sweep_run_after_its_stop_says_why_it_stopped() {
+    let m = rocker();
+    let lim = limit(&m);
+    let stopped = || {
+        let mut sweep = m.sweep(0.0, lim + 0.5, 10, &m.guess(0.0)).unwrap();
+        let stop = sweep.by_ref().find_map(Result::err).expect("stopped");
+        assert!(matches!(stop, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{stop}");
+        sweep
+    };
+    let run = stopped().run();
+    assert!(run.states.is_empty());
+    let event = run.stop.event().expect("the limit position").clone();
+    assert!(matches!(run.stop, SweepStop::LimitPosition(_)), "{:?}", run.stop);
+    assert!((event.x[0] - lim).abs() <= tol::LOCATED, "{event:?}");
+    assert_eq!(run.events, [event]);
+    let err = run.into_result().expect_err("stopped");
+    assert!(matches!(err, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{err}");
+    let err = stopped().table().expect_err("stopped");
+    assert!(matches!(err, Error::SweepStopped { kind: EventKind::LimitPosition, .. }), "{err}");
+    // An invalid configuration, met by the first item.
+    let mut sweep =
+        m.sweep(0.0, 1.0, 5, &m.guess(0.0)).unwrap().with_config(SweepConfig::default().with_max_halvings(0));
+    assert!(matches!(sweep.next(), Some(Err(Error::InvalidArgument(_)))));
+    assert!(matches!(sweep.run().into_result(), Err(Error::InvalidArgument(_))));
+    // A sweep run to its end gives no more states, completed.
+    let mut sweep = m.sweep(0.0, 1.0, 5, &m.guess(0.0)).unwrap();
+    assert_eq!(sweep.by_ref().filter(Result::is_ok).count(), 5);
+    let run = sweep.run();
+    assert!(run.is_completed() && run.states.is_empty());
+}

@@ -179,7 +179,8 @@ pub type Sweep<'m, M, S, const N: usize, const NI: usize, const NO: usize> = Swe
 /// converts into). The one implementation of the sweep, its events and its table.
 ///
 /// An error ends the sweep: after it, as after the last sample, every item is `None` (the
-/// iterator is fused), and [`Iterator::size_hint`] says so. Until then its upper bound is the
+/// iterator is fused), and [`Iterator::size_hint`] says so; [`SweepOf::run`] and
+/// [`SweepOf::table`] asked after it give that error. Until then its upper bound is the
 /// samples left and its lower bound zero, since any step may stop the sweep.
 pub struct SweepOf<K: Kernel, S> {
     m: K,
@@ -248,6 +249,9 @@ pub struct SweepOf<K: Kernel, S> {
     /// A corner of the path at its start and at its end (within the smallest step), not listed
     /// among the events: the range holds one of its sides only (see [`SweepOf::past_kink`]).
     corners_at_ends: [Option<Event>; 2],
+    /// The error that ended the sweep, once it did: what a `run` or a `table` asked after it
+    /// says (none of the samples it did not reach is to come).
+    stopped_by: Option<Error>,
     done: bool,
     /// `started && !done && invalid.is_none()`: the steady state, where a sample needs one test
     /// of this rather than one of each.
@@ -427,6 +431,7 @@ where
             too_long,
             events: Vec::new(),
             corners_at_ends: [None, None],
+            stopped_by: None,
             done: false,
             stepping: false,
             _s: PhantomData,
@@ -545,7 +550,13 @@ where
     /// (where the allocation would abort the process). Iterate such a sweep instead (`for s in
     /// sweep`, or a fold), which keeps only what the caller keeps and has no such bound, or take
     /// fewer samples.
+    ///
+    /// A sweep already stopped by an error (iterated up to it) gives no states, stopped by that
+    /// error, with the events it met: the samples it did not reach are not to come.
     pub fn run(mut self) -> SweepResult<S> {
+        if let Some(e) = self.stopped_by.take() {
+            return SweepResult::new(Vec::new(), Some(e), self.events);
+        }
         let bytes_each = size_of::<S>() + self.cur().heap_bytes();
         let instead = "iterate the sweep instead (`for s in sweep`, or a fold, keeps only what you keep), or take fewer \
                        samples";
@@ -575,7 +586,12 @@ where
     /// [`MAX_COLLECTED_BYTES`](super::collected::MAX_COLLECTED_BYTES) (1 GiB) is an
     /// [`Error::InvalidArgument`] with the numbers, before any step. Iterate such a sweep instead
     /// (`for s in sweep`, writing each row as it comes), or take fewer samples.
+    ///
+    /// A sweep already stopped by an error (iterated up to it) gives that error.
     pub fn table(mut self) -> Result<Table, Error> {
+        if let Some(e) = self.stopped_by.take() {
+            return Err(e);
+        }
         let columns = Table::kernel_columns(&self.m);
         // A row is its own vector: the values and the vector's header.
         let bytes_each = size_of::<Vec<f64>>() + columns.len() * size_of::<f64>();
@@ -719,18 +735,15 @@ where
                 self.next = 1;
                 Ok(())
             }
-            Err(e) => {
-                self.stop();
-                Err(match e {
-                    // Where a sweep stopped (a limit position located to the rounding) the
-                    // pivot ratio is below even the point solve's tolerance: the same start as
-                    // the end of a reachable range, said as such (see `diagnose`).
-                    Error::Singular { pivot_ratio, at, .. } => {
-                        Error::SingularStart { pivot_ratio, singular_pivot: self.cfg.singular_pivot, at }
-                    }
-                    e => e,
-                })
-            }
+            Err(e) => Err(self.stopped(match e {
+                // Where a sweep stopped (a limit position located to the rounding) the pivot
+                // ratio is below even the point solve's tolerance: the same start as the end of
+                // a reachable range, said as such (see `diagnose`).
+                Error::Singular { pivot_ratio, at, .. } => {
+                    Error::SingularStart { pivot_ratio, singular_pivot: self.cfg.singular_pivot, at }
+                }
+                e => e,
+            })),
         }
     }
 
@@ -791,6 +804,14 @@ where
         self.stepping = false;
     }
 
+    /// Ends the sweep with the error `e`, kept for a `run` or a `table` asked after it.
+    #[cold]
+    fn stopped(&mut self, e: Error) -> Error {
+        self.stop();
+        self.stopped_by = Some(e.clone());
+        e
+    }
+
     /// [`Sweep::next_ref`] outside the steady state: the end, the configuration's error, or the
     /// first sample.
     #[cold]
@@ -798,19 +819,13 @@ where
         if self.done || self.next >= self.samples {
             return None;
         }
-        if self.invalid.is_some() {
-            self.stop();
-            return self.invalid.take().map(Err);
-        }
-        if self.too_long.is_some() {
-            self.stop();
-            return self.too_long.take().map(Err);
+        if let Some(e) = self.invalid.take().or_else(|| self.too_long.take()) {
+            return Some(Err(self.stopped(e)));
         }
         // Once a sweep, under the configuration it runs with (a sweep over any kernel, made by
         // `over` and configured after: the kernel-level algorithms have no other entry).
         if let Err(e) = self.m.check_param_angles(&self.cfg.newton) {
-            self.stop();
-            return Some(Err(e));
+            return Some(Err(self.stopped(e)));
         }
         Some(self.first_sample().map(|()| self.cur()))
     }
@@ -854,8 +869,7 @@ where
             if attempts > self.max_attempts {
                 // A window of the budget spent: going on only where it advanced by a stride.
                 if let Err(e) = self.window_spent() {
-                    self.stop();
-                    return Some(Err(e));
+                    return Some(Err(self.stopped(e)));
                 }
                 attempts = 1;
             }
@@ -910,10 +924,7 @@ where
                                 *self.cur_mut() = n;
                                 self.h = self.h_max;
                             }
-                            Err(e) => {
-                                self.stop();
-                                return Some(Err(e));
-                            }
+                            Err(e) => return Some(Err(self.stopped(e))),
                         }
                     }
                 }
