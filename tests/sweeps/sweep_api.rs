@@ -435,3 +435,23 @@ fn a_sweep_run_after_its_stop_says_why_it_stopped() {
     let run = sweep.run();
     assert!(run.is_completed() && run.states.is_empty());
 }
+
+/// A trace's range is refused as a sweep's: an end that is not finite named, with its value, and
+/// a range of finite ends whose length overflows said as such; the one message for all three
+/// asked for finite ends of finite ends.
+#[test]
+fn a_trace_names_what_is_wrong_with_its_range() {
+    let m = rocker();
+    let o = TraceConfig::default();
+    for (from, to, end) in [(0.0, f64::NAN, "to"), (f64::INFINITY, 1.0, "from"), (0.0, f64::NEG_INFINITY, "to")] {
+        let err = m.trace_curve(from, to, &m.guess(0.0), &o).expect_err("refused");
+        let sweep = m.sweep(from, to, 2, &m.guess(0.0)).expect_err("refused");
+        assert_eq!(err.to_string(), sweep.to_string());
+        assert!(matches!(&err, Error::NonFinite { name, .. } if name == end), "{err:?}");
+    }
+    let err = m.trace_curve(-1e308, 1e308, &m.guess(0.0), &o).expect_err("refused");
+    let msg = err.to_string();
+    assert!(msg.contains("overflows") && !msg.contains("finite `from`"), "{msg}");
+    let err = m.trace_curve(0.5, 0.5, &m.guess(0.5), &o).expect_err("refused");
+    assert!(err.to_string().contains("`to` different from `from`"), "{err}");
+}

@@ -6,7 +6,7 @@ use super::curve::{
     CurvePoint, Metric, Path, arc_step, event_at, locate_fold, loose_position, pivot_at, signed_det, singular_ratio_at,
     tangent_from_analogs,
 };
-use super::sweep::range_too_long;
+use super::sweep::{check_finite, range_too_long};
 use super::trace_kink::{MAX_TURN, past_kink, turn};
 use super::trace_start;
 use crate::dims::{Dims, KinState, Store};
@@ -212,7 +212,8 @@ pub type Traced<const N: usize, const NI: usize> = TracedOf<[f64; N], [f64; NI]>
 /// Errors: `InvalidArgument` for invalid options (naming the field), a
 /// [`TraceConfig::max_points`] whose points would take more than
 /// [`MAX_COLLECTED_BYTES`] (with the numbers), or
-/// `to == from` (or within the smallest normal number of it); the errors of the first solve at
+/// `to == from` (or within the smallest normal number of it), or a range `to - from` that
+/// overflows; `NonFinite` naming `from` or `to` where one is not finite; the errors of the first solve at
 /// `from`, but for an analog beyond `f64`'s range (the acceleration analogs by a length input in
 /// a mechanism below about `1e-154` in size), which the trace does not use; `Branch` where the continuation cannot proceed (the
 /// curve ends or jumps, or branches meet, where no step however short stays on it).
@@ -247,14 +248,21 @@ pub fn trace_curve_of<K: Kernel>(
     let cfg = opts.newton.unwrap_or(m.solver_config().newton);
     cfg.validate()?;
     m.check_param_angles(&cfg)?;
+    // Named as a sweep names them: the end that is not finite, and a range whose length
+    // overflows (of finite ends, which the one message for all three called not finite).
+    check_finite("from", from.as_ref(), m)?;
+    check_finite("to", to.as_ref(), m)?;
     let path = Path::new(from.clone(), to);
+    if !path.len.is_finite() {
+        return Err(Error::InvalidArgument(
+            "trace_curve: the range `to - from` overflows (its length is not finite); give ends closer together".into(),
+        ));
+    }
     // A range shorter than the smallest normal number gives no direction either: the path's
     // parameter, `sigma / len`, overflows, and a regular start was told the curve branches there.
-    if !(path.len >= f64::MIN_POSITIVE && path.len.is_finite()) {
+    if path.len < f64::MIN_POSITIVE {
         return Err(Error::InvalidArgument(
-            "trace_curve needs finite `from` and `to` with `to` different from `from` (by at least 2.2e-308, the \
-             smallest normal number)"
-                .into(),
+            "trace_curve needs `to` different from `from` (by at least 2.2e-308, the smallest normal number)".into(),
         ));
     }
     // A start at a limit position (where a sweep that stopped there says it is) has positions
