@@ -8,7 +8,7 @@ use super::expr::{Expr, SpanRange, parse_expr};
 use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, kw};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
-use syn::{Attribute, Ident, Token};
+use syn::{Attribute, Ident, Token, Visibility};
 
 /// Parses one item. A missing `;` after a complete item is pushed to `errors` and the item is
 /// kept, so the next item is parsed normally.
@@ -38,6 +38,13 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
             Some(e) => errors.push(e),
             None => docs.push(attr),
         }
+    }
+    if input.peek(Token![pub]) {
+        // `pub point p = ...`, as a Rust field or item is written: said, then the item is read
+        // as if the visibility were not there, so that its names keep their fields.
+        let vis: Visibility = input.parse()?;
+        let tokens = quote::ToTokens::to_token_stream(&vis);
+        errors.push(syn::Error::new_spanned(&tokens, format!("remove `{}`: {VISIBILITY}", written(&tokens))));
     }
     let keyword = input.span();
     let look = input.lookahead1();
@@ -433,7 +440,10 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
     if !input.peek(Ident) {
         // A keyword where a name belongs (`input self;`): the list keeps a stand-in, so that
         // the fallback types have as many inputs as written (`m.solve(0.5)` still converts).
-        if let Ok(word) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
+        // A keyword before the name (`params pub r`) keeps that name's field.
+        if let Some((_, _, after)) = modifier_before_name(input) {
+            *name = Some(after);
+        } else if let Ok(word) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
             *name = Some(Ident::new(&format!("__kinloop_keyword_{word}"), word.span()));
         }
         let what = match kind {
@@ -559,6 +569,31 @@ fn item_article(what: &str) -> String {
     format!("{article} `{what}`")
 }
 
+/// Why no item or name takes a visibility, for the message that says to remove one.
+const VISIBILITY: &str = "the items and names of a declaration take no visibility: the generated fields are all \
+     public, and the generated types take the mechanism's (`pub struct Name`)";
+
+/// A Rust keyword written before a name, as a modifier (`params pub r`, `params const r`): how
+/// it is written, its tokens and the name after it. `None` where no name follows the keyword
+/// (`params type;`, a keyword where the name belongs).
+fn modifier_before_name(input: ParseStream) -> Option<(String, proc_macro2::TokenStream, Ident)> {
+    use quote::ToTokens;
+    let fork = input.fork();
+    let tokens = if fork.peek(Token![pub]) {
+        // `pub(crate) r`: the visibility as a whole.
+        fork.parse::<Visibility>().ok()?.to_token_stream()
+    } else {
+        fork.call(<Ident as syn::ext::IdentExt>::parse_any).ok()?.to_token_stream()
+    };
+    let name: Ident = fork.parse().ok()?;
+    Some((written(&tokens), tokens, name))
+}
+
+/// `tokens` as a message quotes them: `pub(crate)`, not the token stream's `pub (crate)`.
+fn written(tokens: &proc_macro2::TokenStream) -> String {
+    tokens.to_string().replace(" (", "(").replace("( ", "(").replace(" )", ")")
+}
+
 /// The error for a Rust keyword where a name belongs (`params in;`, `output type = ..;`),
 /// saying what to write instead; `None` where no keyword stands.
 fn keyword_as_name(input: ParseStream, what: &str) -> Option<syn::Error> {
@@ -581,6 +616,16 @@ fn keyword_as_name(input: ParseStream, what: &str) -> Option<syn::Error> {
                 "`_` is Rust's placeholder, not a name, and cannot name {what}: give it a name{unused}"
             )),
         );
+    }
+    if let Some((word, tokens, name)) = modifier_before_name(input) {
+        // `params pub r` or `params const r`: a keyword before the name, not in its place;
+        // another name for the keyword (`pub_`) would not help.
+        let why = if input.peek(Token![pub]) {
+            VISIBILITY.to_string()
+        } else {
+            format!("{what} is declared by its name alone")
+        };
+        return Some(syn::Error::new_spanned(tokens, format!("remove `{word}`: {why}; write `{name}`")));
     }
     // These four are keywords even as raw identifiers.
     let raw = if matches!(word.as_str(), "self" | "Self" | "super" | "crate") {
