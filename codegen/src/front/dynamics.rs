@@ -8,7 +8,7 @@
 //! torque load on phi4 = -c4;
 //! ```
 
-use super::expr::{Expr, parse_expr};
+use super::expr::{Expr, parse_expr, starts_an_item};
 use super::syntax::{BodyDef, ItemKind, kw};
 use syn::parse::ParseStream;
 use syn::{Ident, Token};
@@ -78,6 +78,13 @@ pub(super) fn parse_body(input: ParseStream) -> syn::Result<BodyDef> {
             {
                 return Err(input.error(format!("expected `,` before `{next}`: {BODY}")));
             }
+            break;
+        }
+        let after = input.fork();
+        after.parse::<Token![,]>()?;
+        if after.is_empty() || starts_an_item(&after) {
+            // `com (x, 0),` ending the declaration or before the next item: left for the item's
+            // `;` check, which says to write `;` there, not that a clause is missing.
             break;
         }
         input.parse::<Token![,]>()?;

@@ -397,6 +397,19 @@ const STARTS_A_PART: &[&str] = &[
     "force", "torque", "gravity", "at", "on", "mass", "com", "inertia", "turns",
 ];
 
+/// The words that start an item: for the parsers that `item` builds on (this one, `dynamics`),
+/// which cannot ask `item` without importing it back.
+const ITEM_KEYWORDS: &[&str] = &[
+    "params", "param", "input", "inputs", "unknowns", "unknown", "let", "loop", "eq", "point", "output", "body",
+    "force", "torque", "gravity",
+];
+
+/// Whether `input` starts an item: at its keyword, or at a doc comment or attribute before one.
+pub(super) fn starts_an_item(input: ParseStream) -> bool {
+    input.peek(Token![#])
+        || input.cursor().ident().is_some_and(|(id, _)| ITEM_KEYWORDS.contains(&id.to_string().as_str()))
+}
+
 fn short(s: &str) -> String {
     if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
 }

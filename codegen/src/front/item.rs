@@ -322,14 +322,13 @@ fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
         // `params a, b, input phi;`: the `,` stands for the `;`. It is consumed, so that the
         // next item is parsed (and its names declared) as written.
         let comma = input.parse::<Token![,]>()?;
-        let next = input.cursor().token_tree().map(|(tt, _)| short(&tt.to_string())).unwrap_or_default();
+        let next = match input.cursor().token_tree() {
+            Some((tt, _)) => format!(", before `{}`, which starts the next item", short(&tt.to_string())),
+            None => " (the last item ends with its `;` too)".to_string(),
+        };
         Err(syn::Error::new(
             comma.span,
-            format!(
-                "expected `;` at the end of this `{}` item, found `,`: write `;` here, before `{next}`, \
-                 which starts the next item",
-                item_keyword(item)
-            ),
+            format!("expected `;` at the end of this `{}` item, found `,`: write `;` here{next}", item_keyword(item)),
         ))
     } else {
         // Underline the end of the item that lacks its `;`, not the next item.
@@ -363,10 +362,18 @@ fn item_keyword(item: &Item) -> &'static str {
 /// Whether `input` is at a `,` written for the `;` that ends an item: an item's keyword follows
 /// it, itself followed by what starts that item (`input phi`, `point p = ..`, `loop c: ..`),
 /// not by what follows a declared name. So `params a, force, mass;` still declares a parameter
-/// named `force`, while `params a, b, input phi;` ends the parameters before `input`.
+/// named `force`, while `params a, b, input phi;` ends the parameters before `input`. A `,`
+/// that ends the body (`unknowns psi, x,` before `}`, as a Rust struct's last field) is one too:
+/// no name follows it.
 fn comma_before_item(input: ParseStream) -> bool {
     let fork = input.fork();
-    if fork.parse::<Token![,]>().is_err() || fork.peek(Token![#]) || !at_item_start(&fork) {
+    if fork.parse::<Token![,]>().is_err() {
+        return false;
+    }
+    if fork.is_empty() {
+        return true;
+    }
+    if fork.peek(Token![#]) || !at_item_start(&fork) {
         return false;
     }
     if fork.peek(Token![let]) || fork.peek(Token![loop]) {
