@@ -410,6 +410,28 @@ pub(super) fn starts_an_item(input: ParseStream) -> bool {
         || input.cursor().ident().is_some_and(|(id, _)| ITEM_KEYWORDS.contains(&id.to_string().as_str()))
 }
 
+/// The error for a doc comment inside an item (`loop c: r @ phi /// the crank` on a line of
+/// its own), where it documents nothing: the parsers met it as a `#` where a value, an
+/// operator, a name or the `;` belonged, and said so of the `#` the user did not write. `None`
+/// where no doc comment stands, and where one starts the next item (that item's own, after an
+/// item without its `;`: the `;` is what is missing).
+pub(super) fn misplaced_doc_comment(input: ParseStream) -> Option<syn::Error> {
+    if !input.peek(Token![#]) || input.peek2(Token![!]) {
+        return None;
+    }
+    let fork = input.fork();
+    let attrs = syn::Attribute::parse_outer(&fork).ok()?;
+    let first = attrs.first().filter(|a| a.path().is_ident("doc"))?;
+    if starts_an_item(&fork) {
+        return None;
+    }
+    Some(syn::Error::new_spanned(
+        first,
+        "a doc comment documents the item or the name after it and cannot stand inside an item; \
+         move it above the item, or write a plain comment with `//`",
+    ))
+}
+
 fn short(s: &str) -> String {
     if s.chars().count() <= 24 { s.to_string() } else { format!("{}...", s.chars().take(24).collect::<String>()) }
 }
@@ -560,6 +582,9 @@ impl Parser {
             };
             lhs = Expr::Binary { op, op_span, lhs: Box::new(lhs), rhs: Box::new(rhs) };
         }
+        if let Some(e) = misplaced_doc_comment(input) {
+            return Err(e);
+        }
         self.depth -= 1;
         Ok(lhs)
     }
@@ -657,6 +682,9 @@ impl Parser {
             return Err(input.error(format!("expected a value: {VALUE}")));
         }
         if let Some(e) = number_without_leading_digit(input) {
+            return Err(e);
+        }
+        if let Some(e) = misplaced_doc_comment(input) {
             return Err(e);
         }
         // The operator or token where a value was expected (a joint operator such as `==` whole).

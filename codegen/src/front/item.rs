@@ -4,7 +4,7 @@
 //! `declaration`.
 
 use super::dynamics::{parse_body, parse_force, parse_torque};
-use super::expr::{Expr, SpanRange, parse_expr};
+use super::expr::{Expr, SpanRange, misplaced_doc_comment, parse_expr};
 use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, kw};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
@@ -316,6 +316,10 @@ fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
         Ok(())
     } else if let Some(e) = not_in_the_language(input) {
         Err(e)
+    } else if let Some(e) = misplaced_doc_comment(input) {
+        // Passed over, so that the recovery goes on from what follows it.
+        let _ = Attribute::parse_outer(input);
+        Err(e)
     } else if input.peek(Token![=]) {
         Err(input.error("unexpected `=`: equations are written with `==`"))
     } else if comma_before_item(input) {
@@ -333,6 +337,10 @@ fn expect_semicolon(input: ParseStream, item: &Item) -> syn::Result<()> {
     } else {
         // Underline the end of the item that lacks its `;`, not the next item.
         let next = match input.cursor().token_tree() {
+            // A doc comment is `#` and a bracket to the parser, which the user did not write.
+            Some(_) if input.peek(Token![#]) && !input.peek2(Token![!]) => {
+                " (before the doc comment of the next item)".to_string()
+            }
             Some((tt, _)) => format!(" (before `{}`)", short(&tt.to_string())),
             None => String::new(),
         };
@@ -695,6 +703,9 @@ fn parse_binding(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr)> {
     if let Some(e) = keyword_as_name(input, &item_article(what)) {
         return Err(e);
     }
+    if let Some(e) = misplaced_doc_comment(input) {
+        return Err(e);
+    }
     if !input.peek(Ident) {
         return Err(input.error(format!("expected a name: `{what} name = expression;`")));
     }
@@ -716,6 +727,9 @@ fn parse_binding(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr)> {
 
 fn parse_equation(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr, Expr, Span)> {
     if let Some(e) = keyword_as_name(input, &item_article(what)) {
+        return Err(e);
+    }
+    if let Some(e) = misplaced_doc_comment(input) {
         return Err(e);
     }
     if !input.peek(Ident) {
