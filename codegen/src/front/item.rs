@@ -32,7 +32,13 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
     let mut docs = Vec::new();
     for attr in attrs {
         if !attr.path().is_ident("doc") {
-            return Err(syn::Error::new_spanned(&attr, "only doc comments (`///`) are accepted before an item"));
+            // Said, and the item read all the same: its names keep their fields in the fallback
+            // types, so the code that uses them adds no error of its own.
+            errors.push(syn::Error::new_spanned(
+                &attr,
+                "only doc comments (`///`) are accepted before an item; remove this attribute",
+            ));
+            continue;
         }
         match not_a_doc_comment(&attr) {
             Some(e) => errors.push(e),
@@ -109,9 +115,11 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
         ItemKind::Gravity { value }
     } else {
         let mut err = look.error();
+        let mut recovered = None;
         // Rust's own keywords too (`const`, `fn`): syn's message for them lists its peeks.
         if let Ok(id) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
-            let hint = keyword_hint(&id);
+            let meant = meant_keyword(&id);
+            let hint = meant.as_ref().map(|k| format!(" (did you mean `{k}`?)")).unwrap_or_default();
             err = if hint.is_empty() && equation_ahead(input) {
                 // `y == 2 * x;`: an equation without its keyword and name, not a misspelt item.
                 syn::Error::new(
@@ -124,8 +132,15 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
             } else {
                 syn::Error::new(id.span(), format!("`{id}` does not start an item{hint}; {ITEMS}"))
             };
+            recovered = meant.and_then(|k| declared_as(input, &k));
         }
-        return Err(err);
+        match recovered {
+            Some(kind) => {
+                errors.push(err);
+                kind
+            }
+            None => return Err(err),
+        }
     };
     let item = Item { docs, keyword, kind };
     if let Err(e) = expect_semicolon(input, &item) {
@@ -291,16 +306,47 @@ const KEYWORDS: &[&str] = &[
 const KEYWORD_ALIASES: &[(&str, &str)] =
     &[("parameters", "params"), ("const", "params"), ("var", "unknowns"), ("equation", "eq"), ("constraint", "eq")];
 
-/// "; did you mean `loop`?" after `lop`, a misspelt keyword (or another language's word for
-/// one); empty for a word like none of them.
-fn keyword_hint(word: &Ident) -> String {
+/// The keyword meant by `word`, a misspelt one (`lop` for `loop`) or another language's word
+/// for one (`parameters` for `params`); `None` for a word like none of them.
+fn meant_keyword(word: &Ident) -> Option<String> {
     let word = word.to_string();
     let keywords: Vec<String> = KEYWORDS.iter().map(|k| k.to_string()).collect();
     let alias = KEYWORD_ALIASES.iter().find(|(a, _)| a.eq_ignore_ascii_case(&word)).map(|(_, k)| k.to_string());
-    match alias.or_else(|| super::suggest::similar(&word, keywords.iter()).cloned()) {
-        Some(k) => format!(" (did you mean `{k}`?)"),
-        None => String::new(),
+    alias.or_else(|| super::suggest::similar(&word, keywords.iter()).cloned())
+}
+
+/// The item after a misspelt keyword (`parms r, l;`, `ouput gap = x;`), read as the keyword
+/// `meant` would start it where that item declares fields of the generated types (a list of
+/// names, a `point`, an `output`) and reads without a mistake up to its `;`: `input` is then
+/// advanced past it, to the `;`. The names keep their fields in the fallback types, so the code
+/// that uses them adds no error of its own. `None` (and `input` untouched) otherwise: the item
+/// is skipped, as before, without guessing at what else its tokens meant.
+fn declared_as(input: ParseStream, meant: &str) -> Option<ItemKind> {
+    use syn::parse::discouraged::Speculative;
+    let fork = input.fork();
+    fork.call(<Ident as syn::ext::IdentExt>::parse_any).ok()?;
+    let mut errors = Errors::default();
+    let kind = match meant {
+        "params" => ItemKind::Decls(DeclKind::Params, parse_decls(&fork, DeclKind::Params, &mut errors).ok()?),
+        "input" | "inputs" => {
+            ItemKind::Decls(DeclKind::Inputs, parse_decls(&fork, DeclKind::Inputs, &mut errors).ok()?)
+        }
+        "unknowns" => ItemKind::Decls(DeclKind::Unknowns, parse_decls(&fork, DeclKind::Unknowns, &mut errors).ok()?),
+        "point" => {
+            let (name, value) = parse_binding(&fork, "point").ok()?;
+            ItemKind::Point { name, value }
+        }
+        "output" => {
+            let (name, value) = parse_binding(&fork, "output").ok()?;
+            ItemKind::Output { name, value }
+        }
+        _ => return None,
+    };
+    if !errors.is_empty() || !fork.peek(Token![;]) {
+        return None;
     }
+    input.advance_to(&fork);
+    Some(kind)
 }
 
 const ITEMS: &str = "an item starts with `params`, `input`, `inputs`, `unknowns`, `let`, `loop`, `eq`, `point`, `output`, \
@@ -447,7 +493,12 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
     }
     let attrs = Attribute::parse_outer(input)?;
     if let Some(bad) = attrs.iter().find(|a| !a.path().is_ident("doc")) {
-        return Err(syn::Error::new_spanned(bad, "only doc comments (`///`) are accepted before a name"));
+        // The name after it keeps its field in the fallback types.
+        *name = input.fork().parse::<Ident>().ok();
+        return Err(syn::Error::new_spanned(
+            bad,
+            "only doc comments (`///`) are accepted before a name; remove this attribute",
+        ));
     }
     if let Some(e) = attrs.iter().find_map(not_a_doc_comment) {
         return Err(e);
