@@ -123,6 +123,28 @@ pub const HINTS: &[(&str, &str)] = &[
     ("radians", "angles are in radians already; `deg(30)` converts 30 degrees"),
     ("fmod", "write `wrap(x, period)` for `x` reduced by whole periods into `[0, period)`"),
     ("rem_euclid", "write `wrap(x, period)` for `x` reduced by whole periods into `[0, period)`"),
+    // Functions of other libraries one edit or two from a built-in of another meaning (`tanh`
+    // from `tan`, `sign` from `sin`, `sec` from `deg`): the nearest name would be a wrong
+    // function that compiles, so each says how it is written.
+    ("sinh", "write `(exp(x) - exp(-x)) / 2`"),
+    ("cosh", "write `(exp(x) + exp(-x)) / 2`"),
+    ("tanh", "write `(exp(x) - exp(-x)) / (exp(x) + exp(-x))`"),
+    ("sign", "write `x / abs(x)` for the sign of an `x` that is never zero"),
+    ("sgn", "write `x / abs(x)` for the sign of an `x` that is never zero"),
+    ("signum", "write `x / abs(x)` for the sign of an `x` that is never zero"),
+    ("cbrt", "write `pow(x, 1 / 3)` for the cube root of an `x` that is not negative"),
+    ("cot", "write `1 / tan(x)`"),
+    ("sec", "write `1 / cos(x)`"),
+    ("csc", "write `1 / sin(x)`"),
+    ("exp2", "write `pow(2, x)`"),
+    ("log10", "write `ln(x) / ln(10)`"),
+    ("log2", "write `ln(x) / ln(2)`"),
+    ("ceil", "write `-floor(-x)`"),
+    ("round", "write `floor(x + 0.5)`"),
+    ("rad", "angles are in radians already; `deg(30)` converts 30 degrees"),
+    ("to_radians", "angles are in radians already; `deg(30)` converts 30 degrees"),
+    ("cosine", "write `cos(x)`"),
+    ("tangent", "write `tan(x)`"),
 ];
 
 /// The built-in function called `name`.
