@@ -654,22 +654,19 @@ impl Parser {
         if look.peek(Ident) {
             let id: Ident = input.parse()?;
             if input.peek(syn::token::Paren) {
-                let content;
-                let paren = syn::parenthesized!(content in input);
-                let mut args = Vec::new();
-                while !content.is_empty() {
-                    args.push(self.expr(&content, 0)?);
-                    if content.is_empty() {
-                        break;
-                    }
-                    if !content.peek(Token![,]) {
-                        return Err(content.error("expected `,` between function arguments"));
-                    }
-                    content.parse::<Token![,]>()?;
-                }
-                return Ok(Expr::Call { func: id, args, close: paren.span.close() });
+                return self.call(input, id);
             }
             return Ok(Expr::Var(id));
+        }
+        // `mod(x, 360)`, as other languages write a remainder: a call of a function the
+        // language does not have, which the names' check says with what to write (`wrap`), not
+        // the Rust keyword where a value belongs.
+        if let Some((id, rest)) = input.cursor().ident()
+            && id == "mod"
+            && rest.group(proc_macro2::Delimiter::Parenthesis).is_some()
+        {
+            let id = input.call(<Ident as syn::ext::IdentExt>::parse_any)?;
+            return self.call(input, id);
         }
         if look.peek(syn::token::Paren) {
             return self.paren_or_vector(input);
@@ -701,6 +698,24 @@ impl Parser {
         }
         // Underlined whole, as it is quoted: both characters of `==`.
         Err(range.error(format!("expected a value ({VALUE}), found `{found}`")))
+    }
+
+    /// The arguments of a call of `func`, `func(a, b)`, at the `(`.
+    fn call(&mut self, input: ParseStream, func: Ident) -> syn::Result<Expr> {
+        let content;
+        let paren = syn::parenthesized!(content in input);
+        let mut args = Vec::new();
+        while !content.is_empty() {
+            args.push(self.expr(&content, 0)?);
+            if content.is_empty() {
+                break;
+            }
+            if !content.peek(Token![,]) {
+                return Err(content.error("expected `,` between function arguments"));
+            }
+            content.parse::<Token![,]>()?;
+        }
+        Ok(Expr::Call { func, args, close: paren.span.close() })
     }
 
     /// `(expression)` or a vector `(x, y)`.

@@ -123,6 +123,7 @@ pub const HINTS: &[(&str, &str)] = &[
     ("radians", "angles are in radians already; `deg(30)` converts 30 degrees"),
     ("fmod", "write `wrap(x, period)` for `x` reduced by whole periods into `[0, period)`"),
     ("rem_euclid", "write `wrap(x, period)` for `x` reduced by whole periods into `[0, period)`"),
+    ("mod", "write `wrap(x, period)` for `x` reduced by whole periods into `[0, period)`"),
     // Functions of other libraries one edit or two from a built-in of another meaning (`tanh`
     // from `tan`, `sign` from `sin`, `sec` from `deg`): the nearest name would be a wrong
     // function that compiles, so each says how it is written.
