@@ -8,7 +8,8 @@
 /// comes first, so that `Sin` is `sin` and not `min` (both one edit away) and `PI` is `pi`;
 /// then the nearest as written; ties are broken by name so the message is deterministic. A name
 /// written with Greek letters, as a formula from a paper writes it (`φ`, `θ2`), is the candidate
-/// that spells them out (`phi`, `theta2`) before any other.
+/// that spells them out (`phi`, `theta2`) before any other, and a name that spells out a
+/// candidate's Greek letters is that candidate (`phi` is a declared `φ`).
 pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> Option<&'a String> {
     // The distance is quadratic in the lengths: long names get no suggestion.
     const LONGEST: usize = 64;
@@ -21,6 +22,11 @@ pub fn similar<'a>(name: &str, candidates: impl Iterator<Item = &'a String>) -> 
     if let Some(spelled) = spelled
         && let Some(c) = candidates.iter().find(|c| ***c == spelled)
     {
+        return Some(c);
+    }
+    // The other way round: the name spelt out where a candidate is written in Greek (`phi` for
+    // a declared `φ`), which edits would take for another Latin name (`psi`, one edit away).
+    if let Some(c) = candidates.iter().find(|c| spelled_out(c).is_some_and(|s| s == name)) {
         return Some(c);
     }
     candidates
@@ -138,6 +144,12 @@ mod tests {
             assert_eq!(similar(greek, angles.iter()).map(String::as_str), Some(latin), "{greek}");
         }
         assert_eq!(similar("ω", angles.iter()), None, "no `omega` among the names");
+        // A name spelt out is the candidate written in Greek, before a Latin name an edit away.
+        let greek: Vec<String> = ["psi", "φ", "θ2", "theta"].iter().map(|s| s.to_string()).collect();
+        for (latin, written) in [("phi", "φ"), ("theta2", "θ2")] {
+            assert_eq!(similar(latin, greek.iter()).map(String::as_str), Some(written), "{latin}");
+        }
+        assert_eq!(similar("theta", greek.iter()).map(String::as_str), Some("theta"), "the name itself");
         assert_eq!(spelled_out("phi"), None);
         assert_eq!(spelled_out("ςσΣ").as_deref(), Some("sigmasigmasigma"));
         // A one-letter name is never "close" to another one-letter name.
