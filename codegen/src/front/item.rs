@@ -450,6 +450,40 @@ fn short(s: &str) -> String {
 /// included (its value a placeholder), keep their fields in the fallback types, so that the
 /// user's code that uses them adds no secondary errors (`no field named l`).
 fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::Result<Vec<Decl>> {
+    let list = match kind {
+        DeclKind::Params => "params a, b = 2.5;",
+        DeclKind::Inputs => "input phi;` or `inputs th1, th2;",
+        DeclKind::Unknowns => "unknowns psi = 0.3, x;",
+    };
+    // `input: phi;`, `inputs (th1, th2);`: the names after punctuation of another notation.
+    // Said, and the names read all the same, so that they keep their fields in the fallback
+    // types (without them, `m.solve(0.5)` had an error of its own at the macro's call).
+    if input.peek(Token![:]) && !input.peek(Token![::]) {
+        let colon = input.parse::<Token![:]>()?;
+        errors
+            .push(syn::Error::new(colon.span, format!("no `:` after the keyword: write the names after it, `{list}`")));
+    } else if let Some((_, _, span, after)) = input.cursor().any_group()
+        && !input.peek(syn::token::Brace)
+        && after.punct().is_some_and(|(p, _)| p.as_char() == ';')
+    {
+        errors.push(
+            SpanRange { start: span.open(), end: span.close() }
+                .error(format!("no brackets around the names: write them after the keyword, `{list}`")),
+        );
+        let content;
+        if input.peek(syn::token::Paren) {
+            syn::parenthesized!(content in input);
+        } else {
+            syn::bracketed!(content in input);
+        }
+        let decls = parse_decls(&content, kind, errors)?;
+        // What the list left inside (its error is said) is passed over with the brackets.
+        skip_to_separator(&content);
+        while content.parse::<Token![,]>().is_ok() || content.parse::<Token![;]>().is_ok() {
+            skip_to_separator(&content);
+        }
+        return Ok(decls);
+    }
     let mut decls = Vec::new();
     loop {
         let mut name = None;
