@@ -198,7 +198,8 @@ fn unused_inputs(model: &Model, errors: &mut Errors) {
         } else {
             format!(
                 "input `{inp}` is never used, so nothing moves with it\n\
-                 help: use it in a loop, an equation or a `let`, or remove it"
+                 help: use it in a loop, an equation or an output (directly or through a `let` they use), \
+                 or remove it"
             )
         };
         errors.push(syn::Error::new(inp.span(), message));
