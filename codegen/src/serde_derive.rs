@@ -13,9 +13,9 @@
 //! field-by-field work with serde's exact semantics (names, `skip`, missing fields); the impl
 //! emitted here calls the twin's functions with the format's serializer or deserializer wrapped
 //! in the adapter. A field the struct does not have is an error naming it and the fields it has
-//! (the twin denies unknown fields): a parameter set with a misspelt parameter (`r_pp` beside
-//! `r_p`, whose value was meant) read without a word, the parameter left as written elsewhere. A container `into` (`from`) is honoured directly: the
-//! converted value is written (read) through the same adapter.
+//! (the twin denies unknown fields): with serde's default, a parameter set with a misspelt
+//! parameter (`r_pp` beside `r_p`) was read without a word. A container `into` (`from`) is
+//! honoured directly: the converted value is written (read) through the same adapter.
 //!
 //! The derives take what `mechanism!` generates and nothing else: a struct with named fields,
 //! type parameters only, the container arguments `runtime`, `from`, `into` and the field argument

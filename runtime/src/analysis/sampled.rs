@@ -826,8 +826,9 @@ impl<K: Kernel> SampledOf<K> {
 
     /// Whether a column stands still over a search's points (`jets`, and the `corners` at the
     /// crossings among them): all its values within its rounding (see
-    /// [`SampledOf::rounding_tolerance`]), as its return to its start is judged. Its velocity analog is then rounding too, and the sign changes of that
-    /// noise are no extremes: a parallelogram's coupler angle, zero at every crank angle, had
+    /// [`SampledOf::rounding_tolerance`]), as its return to its start is judged. Its velocity
+    /// analog is then rounding too, and the sign changes of that noise are no extremes: a
+    /// parallelogram's coupler angle, zero at every crank angle, had
     /// thirty "extremes" a turn, at crank angles the rounding chose.
     ///
     /// And its velocity analog says so too, where its kind has a scale of motion (see
