@@ -95,13 +95,30 @@ where
     block_failure(m, block, BlockFailure::InvalidConfig { field }, x, guess, &NewtonConfig::default())
 }
 
+/// `Ok` for a valid configuration, else [`config_failure_at`]: the check that opens
+/// `kinematics_at_flat` and `sensitivities_at_flat` (one statement of the expansion, with `?`).
+#[inline(always)]
+pub fn config_checked_at<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    cfg: &NewtonConfig,
+    x: &[f64; NI],
+) -> Result<(), Error>
+where
+    M: Mechanism<N, NI, NO>,
+{
+    match cfg.invalid_field() {
+        Some(field) => Err(config_failure_at(m, 0, field, x)),
+        None => Ok(()),
+    }
+}
+
 /// [`config_failure`] of the analogs at a position the caller gives (`kinematics_at_flat`,
 /// `sensitivities_at_flat`), which read the configuration's `singular_tol`: there is no guess,
 /// and the position is the caller's, named as such by the named API (a NaN tolerance made
 /// every block "singular", a negative one was taken).
 #[cold]
 #[inline(never)]
-pub fn config_failure_at<M, const N: usize, const NI: usize, const NO: usize>(
+fn config_failure_at<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
     block: usize,
     field: &'static str,

@@ -40,15 +40,12 @@ impl Kernel<'_> {
                 let (q, lets) = (bind_q(self.names, &self.used), self.lets(r));
                 let res = self.names.operands(self.g, &self.plan.residuals);
                 // The analogs' singularity tests read `singular_tol`: an invalid configuration
-                // is named here as a solve names it (a NaN tolerance failed every block).
+                // is named here as a solve names it (a NaN tolerance failed every block). One
+                // statement, the `if` in the runtime: the expansion is a line longer, not five.
                 let check = if self.plan.blocks.is_empty() {
                     TokenStream::new()
                 } else {
-                    quote! {
-                        if let ::core::option::Option::Some(field) = __cfg.invalid_field() {
-                            return ::core::result::Result::Err(#rt::config_failure_at(self, 0, field, __x));
-                        }
-                    }
+                    quote!(#rt::config_checked_at(self, __cfg, __x)?;)
                 };
                 quote! {
                     #check
