@@ -95,8 +95,9 @@ where
     block_failure(m, block, BlockFailure::InvalidConfig { field }, x, guess, &NewtonConfig::default())
 }
 
-/// `Ok` for a valid configuration, else [`config_failure_at`]: the check that opens
-/// `kinematics_at_flat` and `sensitivities_at_flat` (one statement of the expansion, with `?`).
+/// `Ok` for a valid configuration, else the error naming its field out of range (the block's
+/// error, at the caller's position): the check that opens `kinematics_at_flat` and
+/// `sensitivities_at_flat` (one statement of the expansion, with `?`).
 #[inline(always)]
 pub fn config_checked_at<M, const N: usize, const NI: usize, const NO: usize>(
     m: &M,
