@@ -351,26 +351,6 @@ fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
             format!("`{digits}{suffix}` is not a number: angles are in radians already, write `{digits}`"),
         ));
     }
-    // `1e`, `1.5e`: an exponent without its digits, which the lexer hands on as a suffix `e`
-    // (after its own error), or a product with a name `e` without its `*` (`2e` for an
-    // eccentricity): both are said.
-    if suffix.eq_ignore_ascii_case("e") {
-        return Err(syn::Error::new(
-            span,
-            format!(
-                "`{digits}{suffix}` is not a number: an exponent needs its digits, as in `{digits}e3`, and a \
-                 product its `*`, as in `{digits} * {suffix}`"
-            ),
-        ));
-    }
-    // `0b102`, `0o8`: a digit its base does not have, which the lexer hands on as a `0` and a
-    // suffix (after its own error); not a product with a name `b102`.
-    if digits == "0" && suffix.len() > 1 && suffix.starts_with(['b', 'o', 'x']) {
-        return Err(syn::Error::new(
-            span,
-            format!("`0{suffix}` is not a number: it has a digit its base does not have; write the value in decimal"),
-        ));
-    }
     if !suffix.is_empty() && !TYPES.contains(&suffix) && suffix.starts_with(|c: char| c.is_alphabetic()) {
         // `2pi`: a name written right after a number, as in a textbook.
         return Err(syn::Error::new(
