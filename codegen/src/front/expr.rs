@@ -397,8 +397,8 @@ const STARTS_A_PART: &[&str] = &[
     "force", "torque", "gravity", "at", "on", "mass", "com", "inertia", "turns",
 ];
 
-/// The words that start an item: for the parsers that `item` builds on (this one, `dynamics`),
-/// which cannot ask `item` without importing it back.
+/// The words that start an item. Here, below `syntax` (whose custom keywords would import it
+/// back), so that `item`, `dynamics` and this parser all tell an item's start by one list.
 const ITEM_KEYWORDS: &[&str] = &[
     "params", "param", "input", "inputs", "unknowns", "unknown", "let", "loop", "eq", "point", "output", "body",
     "force", "torque", "gravity",

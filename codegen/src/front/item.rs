@@ -4,7 +4,7 @@
 //! `declaration`.
 
 use super::dynamics::{parse_body, parse_force, parse_torque};
-use super::expr::{Expr, SpanRange, misplaced_doc_comment, parse_expr};
+use super::expr::{Expr, SpanRange, misplaced_doc_comment, parse_expr, starts_an_item};
 use super::syntax::{Decl, DeclKind, Errors, Item, ItemKind, kw};
 use proc_macro2::Span;
 use syn::parse::ParseStream;
@@ -146,7 +146,7 @@ pub(super) fn parse_item(input: ParseStream, errors: &mut Errors) -> syn::Result
     if let Err(e) = expect_semicolon(input, &item) {
         errors.push(e);
         // Go on at the next item; anything else before it belongs to this broken item.
-        if !at_item_start(input) {
+        if !starts_an_item(input) {
             skip_item(input);
         }
     }
@@ -214,25 +214,6 @@ pub(super) fn inner_attribute(input: ParseStream) -> syn::Result<Option<syn::Err
     )))
 }
 
-fn at_item_start(input: ParseStream) -> bool {
-    input.peek(kw::params)
-        || input.peek(kw::param)
-        || input.peek(kw::input)
-        || input.peek(kw::inputs)
-        || input.peek(kw::unknowns)
-        || input.peek(kw::unknown)
-        || input.peek(Token![let])
-        || input.peek(Token![loop])
-        || input.peek(kw::eq)
-        || input.peek(kw::point)
-        || input.peek(kw::output)
-        || input.peek(kw::body)
-        || input.peek(kw::force)
-        || input.peek(kw::torque)
-        || input.peek(kw::gravity)
-        || input.peek(Token![#])
-}
-
 /// A name after a `params`, `input` or `unknowns` list that a `;` ended, as in `unknowns psi =
 /// 0.5; x = 1;`: a `;` written for the `,` between names. Its error says to write the `,` ("does
 /// not start an item" named no fix), and the names up to the next `;` join the list, so that
@@ -240,7 +221,7 @@ fn at_item_start(input: ParseStream) -> bool {
 pub(super) fn list_continued(input: ParseStream, items: &mut [Item], errors: &mut Errors) -> syn::Result<bool> {
     let Some(Item { kind: ItemKind::Decls(kind, decls), .. }) = items.last_mut() else { return Ok(false) };
     let Some(last) = decls.last().map(|d| d.name.clone()) else { return Ok(false) };
-    if at_item_start(input) {
+    if starts_an_item(input) {
         return Ok(false);
     }
     let Some((name, rest)) = input.cursor().ident() else { return Ok(false) };
@@ -270,7 +251,7 @@ pub(super) fn list_continued(input: ParseStream, items: &mut [Item], errors: &mu
     decls.extend(parse_decls(input, *kind, errors)?);
     if input.peek(Token![;]) {
         input.parse::<Token![;]>()?;
-    } else if !at_item_start(input) {
+    } else if !starts_an_item(input) {
         skip_item(input);
     }
     Ok(true)
@@ -427,7 +408,7 @@ fn comma_before_item(input: ParseStream) -> bool {
     if fork.is_empty() {
         return true;
     }
-    if fork.peek(Token![#]) || !at_item_start(&fork) {
+    if fork.peek(Token![#]) || !starts_an_item(&fork) {
         return false;
     }
     if fork.peek(Token![let]) || fork.peek(Token![loop]) {
@@ -504,7 +485,7 @@ fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::
                 break;
             }
         } else if let Ok(next) = input.fork().parse::<Ident>()
-            && !at_item_start(input)
+            && !starts_an_item(input)
         {
             // `params a b = 2.5`: the next name without its `,`, not the item's end.
             let list = match kind {
