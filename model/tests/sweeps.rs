@@ -403,3 +403,33 @@ fn collecting_a_model_sweep_counts_its_states_arrays() {
     assert_eq!(model.sweep(&[0.0], &[TAU], samples, &g).unwrap().take(3).filter(Result::is_ok).count(), 3);
     assert_eq!(model.sweep(&[0.0], &[TAU], 37, &g).unwrap().table().unwrap().rows.len(), 37);
 }
+
+/// A run-time model whose unknown is read by equations of two units (a loop's projections, in
+/// lengths, and a gear's equation between angles) is as far from a singular position in every
+/// unit of length, as the compiled mechanism is (`tests/kinematics/mixed_units_extreme_scales.rs`,
+/// which says why it was not): the same smallest pivot ratio to the rounding of its entries, and
+/// a sweep near size 1's that completes at every size.
+#[test]
+fn a_rocker_read_by_a_gear_sweeps_alike_in_every_unit() {
+    let text = "pub struct GearedRocker {
+        params a = 1, b = 3.5, c = 3, d = 4;
+        input phi;
+        unknowns beta = 0.5, gamma = 1.5, th3 = 3.0;
+        loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
+        eq g: th3 == 2 * gamma;
+    }";
+    let guess = [0.5, 1.5, 3.0];
+    let cfg = kinloop::NewtonConfig::default();
+    let pivot_at_one = read(text).kinematics(&[0.5], &guess, &cfg).expect("assembles").health.min_pivot;
+    assert!(pivot_at_one > 0.1, "{pivot_at_one:e}");
+    for k in [1e-9, 1e-6, 1e-3, 1e3, 1e6, 1e9] {
+        let mut model = read(text);
+        set(&mut model, &[("a", k), ("b", 3.5 * k), ("c", 3.0 * k), ("d", 4.0 * k)]);
+        let pivot = model.kinematics(&[0.5], &guess, &cfg).expect("assembles").health.min_pivot;
+        assert!((pivot - pivot_at_one).abs() <= 1e-13 * pivot_at_one, "{k:e}: {pivot:e}");
+        let mut sweep = model.sweep(&[0.5], &[0.6], 11, &guess).unwrap();
+        while let Some(item) = sweep.next_ref() {
+            assert!(item.is_ok(), "{k:e}: {:?}", item.err());
+        }
+    }
+}

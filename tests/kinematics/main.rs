@@ -21,6 +21,7 @@ mod extreme_scales;
 mod five_bar;
 mod later_equations;
 mod limit_positions_extreme_scales;
+mod mixed_units_extreme_scales;
 mod near_singular;
 mod pedantic_lints;
 mod prop_linkages;

@@ -24,7 +24,7 @@ pub enum Dim {
 
 impl Dim {
     /// The power of length in a product (an angle is a pure number there).
-    fn power(self) -> Option<i32> {
+    pub fn power(self) -> Option<i32> {
         match self {
             Dim::Num | Dim::Angle => Some(0),
             Dim::L(k) => Some(k),

@@ -23,7 +23,9 @@ pub struct BlockPlan {
     /// `jac[r][c] = d f_r / d q_c` over the block's unknowns.
     pub jac: Vec<Vec<NodeId>>,
     /// Per block unknown: the non-zero entries of its column of the full Jacobian, whose largest
-    /// magnitude equilibrates the column (see `kinloop_runtime::Lu`).
+    /// magnitude equilibrates the column (see `kinloop_runtime::Lu`); an entry in a row of
+    /// another unit than the block's weighed into the block's (see
+    /// [`column_units`](super::column_units)).
     pub col_scale: Vec<Vec<NodeId>>,
     /// Per block unknown: the lever floors its column's magnitude is raised to (see
     /// [`magnitudes`](super::magnitudes)); empty for most columns.

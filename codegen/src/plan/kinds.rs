@@ -61,6 +61,17 @@ pub fn classify(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeI
     Kinds { inputs, unknowns, outputs: out, params }
 }
 
+/// The power of length of every equation's terms, its unit (`Some(0)`: no unit, an equation
+/// between angles; `None`: not inferred from the classified leaves), by the dimensions of its
+/// residual: a loop's projections are lengths (`Some(1)`), a gear's `th3 == 2 gamma` is of no
+/// unit.
+pub fn row_powers(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]) -> Vec<Option<i32>> {
+    let leaves = leaf_kinds(model, g, residuals, outputs);
+    let of = |l: Leaf| leaves.get(&l).copied().flatten().unwrap_or(Kind::Other);
+    let dims = dimensions(g, residuals, &|l| dim(of(l)));
+    residuals.iter().map(|r| dims[r].power()).collect()
+}
+
 /// The kind of every classified leaf (`None`: reached as two different kinds).
 fn leaf_kinds(model: &Model, g: &Graph, residuals: &[NodeId], outputs: &[NodeId]) -> HashMap<Leaf, Option<Kind>> {
     let roots: Vec<NodeId> = residuals.iter().chain(outputs).copied().collect();

@@ -14,7 +14,8 @@
 //! * the outputs' analogs follow by the chain rule ([`outputs`]);
 //! * parameter sensitivities, only when the declaration asks for them ([`sensitivities`]);
 //! * the magnitude of every equation's terms and the unit of every unknown, in which the
-//!   runtime's convergence tests are made ([`magnitudes`]);
+//!   runtime's convergence tests are made ([`magnitudes`]), and by which a column's entries in
+//!   rows of another unit are weighed into its block's ([`column_units`]);
 //! * read from the finished plan by the emitter: which values a kernel's finiteness test must
 //!   add up, the others' finiteness implying the rest ([`finite`]).
 //!
@@ -32,6 +33,7 @@ pub mod analogs;
 pub mod block_plan;
 pub mod closed_form;
 pub mod closed_form_angles;
+pub mod column_units;
 pub mod columns;
 pub mod defaults;
 pub mod finished;
@@ -91,9 +93,11 @@ pub fn build(model: &mut Model, blocks: &[Block], with_sensitivities: bool) -> P
         bp.turns = turns::turns(&g, bp);
     }
     let mut mags = magnitudes::Magnitudes::new(&g, &residuals);
+    let row_powers = kinds::row_powers(model, &g, &residuals, &outputs);
     for bp in plans.iter_mut() {
         (bp.scale, bp.unit) = mags.block(&mut g, bp);
         bp.lever_floor = mags.lever_floors(&mut g, bp);
+        column_units::weigh(&mut g, &mut mags, bp, &full.0, &residuals, &row_powers);
     }
     // A linear block whose column scales are not known before its solve is solved by Newton.
     let mut solved = vec![false; n];

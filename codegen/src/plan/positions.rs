@@ -42,7 +42,9 @@ pub fn block(g: &mut Graph, blk: &Block, residuals: &[NodeId], jac_full: &[Vec<N
     let f: Vec<NodeId> = blk.equations.iter().map(|&e| residuals[e]).collect();
     let jac: Vec<Vec<NodeId>> =
         blk.equations.iter().map(|&e| blk.unknowns.iter().map(|&u| jac_full[e][u]).collect()).collect();
-    // Column scales: every structurally non-zero entry of the unknown's full Jacobian column.
+    // Column scales: every structurally non-zero entry of the unknown's full Jacobian column
+    // (those in rows of another unit are weighed once the rows' magnitudes are known, see
+    // `column_units`).
     let col_scale: Vec<Vec<NodeId>> =
         blk.unknowns.iter().map(|&u| jac_full.iter().map(|row| row[u]).filter(|&n| !g.is_zero(n)).collect()).collect();
     let own: Vec<Leaf> = blk.unknowns.iter().map(|&a| Leaf::Unknown(a as u16)).collect();

@@ -33,7 +33,8 @@ pub struct Inverse2 {
 impl Inverse2 {
     /// The inverse of `j`, whose column `c` is equilibrated by the largest magnitude among its
     /// two entries and `beyond[c]`, the column's further non-zero entries in the full Jacobian
-    /// (the rows of later blocks, padded with zeros): the largest magnitudes of the whole
+    /// (the rows of later blocks, padded with zeros; an entry in a row of another unit than the
+    /// block's weighed into the block's unit by the macro): the largest magnitudes of the whole
     /// columns, by which [`Lu::factor_cols`](super::lu::Lu::factor_cols) would equilibrate.
     ///
     /// The LU's first pivot is the larger entry of the first column, `t / m0` with `t =
