@@ -26,6 +26,13 @@ fn fused_kernel(decl: &str) -> String {
     code[code.find("fn kinematics_step_sink").expect("the fused kernel")..].split_whitespace().collect()
 }
 
+/// The whole expansion of `decl`, as text without whitespace.
+fn expansion(decl: &str) -> String {
+    let tokens: TokenStream = decl.parse().expect("declaration tokens");
+    let file: syn::File = syn::parse2(kinloop_codegen::expand(tokens)).expect("expansion is a file");
+    prettyplease::unparse(&file).split_whitespace().collect()
+}
+
 /// The declaration of both Watt chains, after their attributes.
 macro_rules! watt_body {
     () => {
@@ -214,4 +221,32 @@ fn an_input_angle_plus_an_offset_comes_by_angle_addition() {
     assert!(!alone.contains("add_angles") && trig_calls(&alone).len() == 1, "{:?}", trig_calls(&alone));
     let coupler = fused_kernel(concat!("#[kinloop(newton)]", watt_body!()));
     assert!(!coupler.contains("add_angles"), "{:?}", trig_calls(&coupler));
+}
+
+/// A block whose rows have two units (a geared five-bar's loop and gear, one block) divides its
+/// rows by their magnitudes before its columns (`Lu::factor_scaled`): it neither keeps Newton's
+/// factorisation, equilibrated by its columns alone, nor takes the 2x2 inverse. A block of
+/// loops and a gear large enough to be sparse does the same over its sparse factorisation.
+#[test]
+fn a_block_of_rows_of_two_units_divides_its_rows_first() {
+    let five_bar = fused_kernel(
+        "pub struct G { params a = 1, b = 2.5, c = 2.2, d = 1.5, e = 1.2; input th1;
+            unknowns phi2 = 1.0, th2 = 0.8, phi3 = 1.6;
+            loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3; eq gear: phi3 == 2 * th2; }",
+    );
+    assert!(five_bar.contains("::newton::<3,") && !five_bar.contains("newton_keeping_lu"), "{five_bar}");
+    let lu = inverse_of(&five_bar, 0);
+    assert!(lu.contains("Lu::<3,>::factor_scaled(&__j,"), "{lu}");
+    let loops: String = (1..8).map(|k| format!("loop l{k}: a @ v{} + b @ u{k} == (d, 0) + c @ v{k};", k - 1)).collect();
+    // Its kernels are the point solve's (`kinematics_flat`), not fused.
+    let ring = expansion(&format!(
+        "pub struct R {{ params a = 1, b = 3, c = 2.5, d = 3.2; input phi;
+            unknowns u0 = 0.6, v0 = 1.9, u1 = 0.6, v1 = 1.9, u2 = 0.6, v2 = 1.9, u3 = 0.6, v3 = 1.9,
+                u4 = 0.6, v4 = 1.9, u5 = 0.6, v5 = 1.9, u6 = 0.6, v6 = 1.9, u7 = 0.6, v7 = 1.9, w = 0.95;
+            loop l0: a @ (0.5 * (phi + w)) + b @ u0 == (d, 0) + c @ v0; {loops} eq gear: w == 0.5 * v7; }}"
+    ));
+    assert!(ring.contains("__j.factor_scaled_into(&mut__lu0,"), "{ring}");
+    // The plain chain of four-bars: its columns alone.
+    let plain = fused_kernel(&watt_body!().replace("Watt", "W"));
+    assert!(!plain.contains("factor_scaled"), "{plain}");
 }

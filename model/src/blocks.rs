@@ -109,13 +109,14 @@ pub(crate) enum Analog {
 impl Analog {
     /// The analogs of a step (`at`: of an evaluation at a given position, where every block but
     /// a fixed one factorises its Jacobian from the graph) for a block of `n` unknowns solved
-    /// as `how`, `in_col` when its one entry is among its column's.
-    pub(crate) fn of(how: &How, n: usize, in_col: bool, at: bool) -> Analog {
+    /// as `how`, `in_col` when its one entry is among its column's, `by_rows` when its rows are
+    /// equilibrated before its columns (rows of several units: never the 2x2 inverse).
+    pub(crate) fn of(how: &How, n: usize, in_col: bool, by_rows: bool, at: bool) -> Analog {
         match (how, at) {
             (How::Fixed { coefficient, .. }, _) => Analog::Fixed(Fixed(*coefficient)),
             (_, true) | (How::Closed(_), false) => match (n, in_col) {
                 (1, true) => Analog::InCol,
-                (2, _) => Analog::Two,
+                (2, _) if !by_rows => Analog::Two,
                 _ => Analog::Graph,
             },
             (How::Linear { .. }, false) => {
@@ -153,6 +154,10 @@ pub(crate) struct BlockProg {
     pub(crate) col: Vec<Vec<u32>>,
     /// Per column: its lever floors only.
     pub(crate) floors: Vec<Vec<u32>>,
+    /// Per row, what the factorisation divides it by before the columns, where the block's rows
+    /// have more than one unit (the plan's `row_scale`); empty where only the columns are
+    /// equilibrated.
+    pub(crate) rows: Vec<u32>,
     /// A block of two unknowns whose columns have entries beyond the block (rows of later
     /// blocks): per column, those entries.
     pub(crate) beyond: Option<[Vec<u32>; 2]>,
@@ -378,7 +383,7 @@ impl BlockProg {
     #[inline(never)]
     fn factor_larger(&self, r: &[f64], fac: &mut Fac) {
         match self.unknowns.len() {
-            2 => fac.put_inverse2(self.inverse2(r)),
+            2 if self.rows.is_empty() => fac.put_inverse2(self.inverse2(r)),
             _ => self.factor_cols(r, fac),
         }
     }
@@ -417,13 +422,17 @@ impl BlockProg {
         for (c, s) in scale.iter_mut().enumerate() {
             *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
         }
+        let rows = &mut [0.0; crate::sparse::MAX_BLOCK][..self.rows.len()];
+        for (s, &k) in rows.iter_mut().zip(&self.rows) {
+            *s = r[k as usize];
+        }
         if let Fac::Sparse(s) = fac {
             // The non-zeros, read from the registers by the block's own tables.
-            s.factor_cols(r, scale);
+            s.factor_cols(r, rows, scale);
             return;
         }
         // The matrix is read from the registers straight into the size's array.
-        fac.factor_cols(n, |k| r[self.jac[k] as usize], scale);
+        fac.factor_cols(n, |k| r[self.jac[k] as usize], rows, scale);
     }
 
     /// Solves the block's positions; writes them into `q` and the registers. With `levers` (a

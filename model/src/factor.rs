@@ -126,12 +126,17 @@ impl Fac {
     }
 
     /// `Lu::factor_cols` of the `n x n` matrix whose entry `k` in row-major order is `entry(k)`,
-    /// with column scales `scale`, written into this slot.
-    pub(crate) fn factor_cols(&mut self, n: usize, entry: impl Fn(usize) -> f64, scale: &[f64]) {
+    /// with column scales `scale`, written into this slot; `Lu::factor_scaled` with row scales
+    /// `rows` where there are any (a block whose rows have more than one unit).
+    pub(crate) fn factor_cols(&mut self, n: usize, entry: impl Fn(usize) -> f64, rows: &[f64], scale: &[f64]) {
         macro_rules! f {
             ($n:literal) => {{
                 let m: [[f64; $n]; $n] = std::array::from_fn(|i| std::array::from_fn(|j| entry(i * $n + j)));
-                *<Lu<$n> as LuSlot<$n>>::slot(self) = Lu::<$n>::factor_cols(&m, array::<$n>(scale))
+                *<Lu<$n> as LuSlot<$n>>::slot(self) = if rows.is_empty() {
+                    Lu::<$n>::factor_cols(&m, array::<$n>(scale))
+                } else {
+                    Lu::<$n>::factor_scaled(&m, array::<$n>(rows), array::<$n>(scale))
+                }
             }};
         }
         match n {

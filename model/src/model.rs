@@ -313,6 +313,7 @@ impl Model {
             if !keeps {
                 roots.extend(bp.col_scale.concat());
                 roots.extend(bp.lever_floor.concat());
+                roots.extend(&bp.row_scale);
             }
             roots.extend(bp.jac.concat());
             prog.vel = tape.segment(&roots, None).map_err(internal)?;
@@ -1041,6 +1042,7 @@ fn position_program(
     let col: Vec<Vec<u32>> =
         (0..nb).map(|c| bp.col_scale[c].iter().chain(&bp.lever_floor[c]).map(|n| n.0).collect()).collect();
     let floors: Vec<Vec<u32>> = bp.lever_floor.iter().map(|f| regs(f)).collect();
+    let rows = regs(&bp.row_scale);
     // A block of two unknowns: its columns' entries in the rows of later blocks, when any.
     let beyond: Option<[Vec<u32>; 2]> = (nb == 2)
         .then(|| {
@@ -1064,6 +1066,7 @@ fn position_program(
                 .chain(rhs.iter().copied())
                 .chain(bp.col_scale.concat())
                 .chain(bp.lever_floor.concat())
+                .chain(bp.row_scale.iter().copied())
                 .collect();
             (tape.segment(&roots, None)?, How::Linear { rhs: regs(rhs) })
         }
@@ -1113,7 +1116,7 @@ fn position_program(
         }
     };
     tape.provide(unknown_nodes.iter().flatten().copied());
-    let analog = |at: bool| Analog::of(&how, nb, in_col.is_some(), at);
+    let analog = |at: bool| Analog::of(&how, nb, in_col.is_some(), !rows.is_empty(), at);
     let (analog, analog_at) = (analog(false), analog(true));
     Ok(BlockProg {
         unknowns: bp.unknowns.clone(),
@@ -1123,6 +1126,7 @@ fn position_program(
         jac,
         col,
         floors,
+        rows,
         beyond,
         in_col,
         vel: Segment::default(),
@@ -1245,7 +1249,8 @@ fn at_kinematics(plan: &Plan, blocks: &[BlockProg], out_roots: &[NodeId]) -> Res
     let mut vel = Vec::with_capacity(blocks.len());
     for (bp, prog) in plan.blocks.iter().zip(blocks) {
         let roots: Vec<NodeId> =
-            [bp.vel.concat(), bp.col_scale.concat(), bp.lever_floor.concat(), bp.jac.concat()].concat();
+            [bp.vel.concat(), bp.col_scale.concat(), bp.lever_floor.concat(), bp.row_scale.clone(), bp.jac.concat()]
+                .concat();
         vel.push(tape.segment(&roots, None)?);
         tape.provide(prog.tan_regs.iter().flatten().map(|&r| NodeId(r)));
     }

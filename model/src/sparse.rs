@@ -43,8 +43,9 @@ pub(crate) trait SparseBlock: fmt::Debug + Send + Sync {
         report: &mut SolveReport,
     ) -> Result<(), BlockFailure>;
     /// The analogs' factorisation: the Jacobian in the registers with column `c` divided by
-    /// `scale[c]` (`SparseJac::factor_cols`).
-    fn factor_cols(&mut self, r: &[f64], scale: &[f64]);
+    /// `scale[c]` (`SparseJac::factor_cols`), and row `k` by `rows[k]` first where `rows` is not
+    /// empty (a block whose rows have more than one unit).
+    fn factor_cols(&mut self, r: &[f64], rows: &[f64], scale: &[f64]);
     /// Solves `J z = rhs` in place with the analogs' factorisation.
     fn solve(&self, rhs: &mut [f64]);
     /// Its pivot ratio.
@@ -208,14 +209,15 @@ impl<const P: usize, const CAP: usize, const K2: usize> SparseBlock for Padded<P
         }
     }
 
-    fn factor_cols(&mut self, r: &[f64], scale: &[f64]) {
+    fn factor_cols(&mut self, r: &[f64], rows: &[f64], scale: &[f64]) {
         let t = &self.work.tables;
         let mut v = [0.0; CAP];
         for (x, &reg) in v.iter_mut().zip(&self.entries) {
             *x = r[reg as usize];
         }
         let col: [f64; P] = std::array::from_fn(|k| if k < t.n { scale[k] } else { 1.0 });
-        self.lu.factor(t, &v[..t.nnz()], [1.0; P], col);
+        let row: [f64; P] = std::array::from_fn(|k| if k < rows.len() { rows[k] } else { 1.0 });
+        self.lu.factor(t, &v[..t.nnz()], row, col);
     }
 
     fn solve(&self, rhs: &mut [f64]) {

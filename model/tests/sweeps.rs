@@ -404,32 +404,57 @@ fn collecting_a_model_sweep_counts_its_states_arrays() {
     assert_eq!(model.sweep(&[0.0], &[TAU], 37, &g).unwrap().table().unwrap().rows.len(), 37);
 }
 
-/// A run-time model whose unknown is read by equations of two units (a loop's projections, in
-/// lengths, and a gear's equation between angles) is as far from a singular position in every
+/// A run-time model whose unknowns are read by equations of two units (a loop's projections,
+/// in lengths, and a gear's equation between angles) is as far from a singular position in every
 /// unit of length, as the compiled mechanism is (`tests/kinematics/mixed_units_extreme_scales.rs`,
 /// which says why it was not): the same smallest pivot ratio to the rounding of its entries, and
-/// a sweep near size 1's that completes at every size.
+/// a sweep near size 1's that completes at every size. A four-bar whose rocker drives a gear
+/// (the gear's row beyond the loop's block), a geared five-bar (the loop and the gear one block,
+/// dense), and a ring of eight four-bars closed through a gear (one sparse block).
 #[test]
-fn a_rocker_read_by_a_gear_sweeps_alike_in_every_unit() {
-    let text = "pub struct GearedRocker {
+fn mechanisms_with_gears_sweep_alike_in_every_unit() {
+    let rocker = "pub struct GearedRocker {
         params a = 1, b = 3.5, c = 3, d = 4;
         input phi;
         unknowns beta = 0.5, gamma = 1.5, th3 = 3.0;
         loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma;
         eq g: th3 == 2 * gamma;
     }";
-    let guess = [0.5, 1.5, 3.0];
+    let five_bar = "pub struct GearedFiveBar {
+        params a = 1, b = 2.5, c = 2.2, d = 1.5, e = 1.2;
+        input th1;
+        unknowns phi2 = 1.0, th2 = 0.8, phi3 = 1.6;
+        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
+        eq gear: phi3 == 2 * th2;
+    }";
+    let loops: String = (1..8).map(|k| format!("loop l{k}: a @ v{} + b @ u{k} == (d, 0) + c @ v{k};", k - 1)).collect();
+    let unknowns: String = (0..8).map(|k| format!("u{k} = 0.6, v{k} = 1.9, ")).collect();
+    let ring = format!(
+        "pub struct GearedRing {{ params a = 1, b = 3, c = 2.5, d = 3.2; input phi; unknowns {unknowns} w = 0.95;
+            loop l0: a @ (0.5 * (phi + w)) + b @ u0 == (d, 0) + c @ v0; {loops} eq gear: w == 0.5 * v7; }}"
+    );
+    let mut ring_guess = [0.6, 1.9].repeat(8);
+    ring_guess.push(0.95);
+    // Each declaration, its lengths at size 1 and its guess.
+    let cases = [
+        (rocker, vec![("a", 1.0), ("b", 3.5), ("c", 3.0), ("d", 4.0)], vec![0.5, 1.5, 3.0]),
+        (five_bar, vec![("a", 1.0), ("b", 2.5), ("c", 2.2), ("d", 1.5), ("e", 1.2)], vec![1.0, 0.8, 1.6]),
+        (&ring, vec![("a", 1.0), ("b", 3.0), ("c", 2.5), ("d", 3.2)], ring_guess),
+    ];
     let cfg = kinloop::NewtonConfig::default();
-    let pivot_at_one = read(text).kinematics(&[0.5], &guess, &cfg).expect("assembles").health.min_pivot;
-    assert!(pivot_at_one > 0.1, "{pivot_at_one:e}");
-    for k in [1e-9, 1e-6, 1e-3, 1e3, 1e6, 1e9] {
-        let mut model = read(text);
-        set(&mut model, &[("a", k), ("b", 3.5 * k), ("c", 3.0 * k), ("d", 4.0 * k)]);
-        let pivot = model.kinematics(&[0.5], &guess, &cfg).expect("assembles").health.min_pivot;
-        assert!((pivot - pivot_at_one).abs() <= 1e-13 * pivot_at_one, "{k:e}: {pivot:e}");
-        let mut sweep = model.sweep(&[0.5], &[0.6], 11, &guess).unwrap();
-        while let Some(item) = sweep.next_ref() {
-            assert!(item.is_ok(), "{k:e}: {:?}", item.err());
+    for (text, lengths, guess) in cases {
+        let pivot_at_one = read(text).kinematics(&[0.5], &guess, &cfg).expect("assembles").health.min_pivot;
+        assert!(pivot_at_one > 0.01, "{pivot_at_one:e}");
+        for k in [1e-9, 1e-6, 1e-3, 1e3, 1e6, 1e9] {
+            let mut model = read(text);
+            let scaled: Vec<(&str, f64)> = lengths.iter().map(|&(p, v)| (p, v * k)).collect();
+            set(&mut model, &scaled);
+            let pivot = model.kinematics(&[0.5], &guess, &cfg).expect("assembles").health.min_pivot;
+            assert!((pivot - pivot_at_one).abs() <= 1e-13 * pivot_at_one, "{k:e}: {pivot:e}\n{text}");
+            let mut sweep = model.sweep(&[0.5], &[0.6], 11, &guess).unwrap();
+            while let Some(item) = sweep.next_ref() {
+                assert!(item.is_ok(), "{k:e}: {:?}\n{text}", item.err());
+            }
         }
     }
 }

@@ -23,6 +23,40 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// A geared five-bar: its two rocker angles are tied by a gear pair of ratio 2, so the loop
+    /// and the gear's equation are one block of three unknowns whose rows have two units.
+    pub struct GearedFiveBar {
+        params a, b, c, d, e;
+        input th1;
+        unknowns phi2 = 1.0, th2 = 0.8, phi3 = 1.6;
+        loop abcde: a @ th1 + b @ phi2 == (d, 0) + e @ th2 + c @ phi3;
+        eq gear: phi3 == 2 * th2;
+    }
+}
+
+mechanism! {
+    /// Eight four-bars closed into a ring through a gear pair: the last rocker turns the first
+    /// crank's gear at half its angle. One block of 17 unknowns, factorised sparse, whose rows
+    /// have two units.
+    pub struct GearedRing {
+        params a, b, c, d;
+        input phi;
+        unknowns
+            u0 = 0.6, v0 = 1.9, u1 = 0.6, v1 = 1.9, u2 = 0.6, v2 = 1.9, u3 = 0.6, v3 = 1.9,
+            u4 = 0.6, v4 = 1.9, u5 = 0.6, v5 = 1.9, u6 = 0.6, v6 = 1.9, u7 = 0.6, v7 = 1.9, w = 0.95;
+        loop l0: a @ (0.5 * (phi + w)) + b @ u0 == (d, 0) + c @ v0;
+        loop l1: a @ v0 + b @ u1 == (d, 0) + c @ v1;
+        loop l2: a @ v1 + b @ u2 == (d, 0) + c @ v2;
+        loop l3: a @ v2 + b @ u3 == (d, 0) + c @ v3;
+        loop l4: a @ v3 + b @ u4 == (d, 0) + c @ v4;
+        loop l5: a @ v4 + b @ u5 == (d, 0) + c @ v5;
+        loop l6: a @ v5 + b @ u6 == (d, 0) + c @ v6;
+        loop l7: a @ v6 + b @ u7 == (d, 0) + c @ v7;
+        eq gear: w == 0.5 * v7;
+    }
+}
+
 /// Sizes from far below to far above a metre.
 const SIZES: [f64; 7] = [1e-9, 1e-6, 1e-3, 1.0, 1e3, 1e6, 1e9];
 
@@ -45,6 +79,54 @@ fn a_rocker_read_by_a_gear_is_as_far_from_singular_in_every_unit() {
         let r = m.sweep(0.5, 0.6, 11, &guess).expect("a sweep").run();
         assert!(r.is_completed(), "{k:e}: {:?}", r.stop);
         assert!((r.states[10].q.gamma - at(1.0).kinematics(0.6, &guess).unwrap().q.gamma).abs() < 1e-14);
+    }
+}
+
+#[test]
+fn a_loop_and_a_gear_in_one_block_are_as_far_from_singular_in_every_unit() {
+    let at = |k: f64| GearedFiveBar { a: k, b: 2.5 * k, c: 2.2 * k, d: 1.5 * k, e: 1.2 * k };
+    let guess = GearedFiveBarUnknowns { phi2: 1.0, th2: 0.8, phi3: 1.6 };
+    let one = at(1.0).kinematics(0.5, &guess).expect("assembles at size 1");
+    assert!(one.health.min_pivot > 0.1, "no singular position near: {:e}", one.health.min_pivot);
+    for k in SIZES {
+        let m = at(k);
+        let s = m.kinematics(0.5, &guess).expect("assembles at every size");
+        assert!(same_pivot(s.health.min_pivot, one.health.min_pivot), "{k:e}: {:e}", s.health.min_pivot);
+        let r = m.sweep(0.5, 0.6, 11, &guess).expect("a sweep").run();
+        assert!(r.is_completed(), "{k:e}: {:?}", r.stop);
+    }
+}
+
+#[test]
+fn a_sparse_block_of_loops_and_a_gear_is_as_far_from_singular_in_every_unit() {
+    let at = |k: f64| GearedRing { a: k, b: 3.0 * k, c: 2.5 * k, d: 3.2 * k };
+    let guess = GearedRingUnknowns {
+        u0: 0.6,
+        v0: 1.9,
+        u1: 0.6,
+        v1: 1.9,
+        u2: 0.6,
+        v2: 1.9,
+        u3: 0.6,
+        v3: 1.9,
+        u4: 0.6,
+        v4: 1.9,
+        u5: 0.6,
+        v5: 1.9,
+        u6: 0.6,
+        v6: 1.9,
+        u7: 0.6,
+        v7: 1.9,
+        w: 0.95,
+    };
+    let one = at(1.0).kinematics(0.5, &guess).expect("assembles at size 1");
+    assert!(one.health.min_pivot > 0.01, "no singular position near: {:e}", one.health.min_pivot);
+    for k in SIZES {
+        let m = at(k);
+        let s = m.kinematics(0.5, &guess).expect("assembles at every size");
+        assert!(same_pivot(s.health.min_pivot, one.health.min_pivot), "{k:e}: {:e}", s.health.min_pivot);
+        let r = m.sweep(0.5, 0.6, 11, &guess).expect("a sweep").run();
+        assert!(r.is_completed(), "{k:e}: {:?}", r.stop);
     }
 }
 

@@ -30,6 +30,11 @@ pub struct BlockPlan {
     /// Per block unknown: the lever floors its column's magnitude is raised to (see
     /// [`magnitudes`](super::magnitudes)); empty for most columns.
     pub lever_floor: Vec<Vec<NodeId>>,
+    /// Per block row, what the analogs' factorisation divides it by before its columns, where
+    /// the block's rows have more than one unit (their magnitudes, and `col_scale` holds each
+    /// entry over its row's: see [`column_units`](super::column_units)); empty where the
+    /// columns alone are equilibrated.
+    pub row_scale: Vec<NodeId>,
     /// `vel[r][i]`: the velocity right-hand side.
     pub vel: Vec<Vec<NodeId>>,
     /// `acc[r][p]`: the acceleration right-hand side for input pair `p`.
@@ -66,6 +71,7 @@ impl BlockPlan {
             jac,
             col_scale,
             lever_floor: vec![Vec::new(); blk.unknowns.len()],
+            row_scale: Vec::new(),
             turns: vec![false; blk.unknowns.len()],
             terms: None,
             vel: Vec::new(),
@@ -89,7 +95,8 @@ impl BlockPlan {
         if !matches!(self.solve, Solve::Linear { .. }) {
             return None;
         }
-        let scales: Vec<NodeId> = self.col_scale.iter().chain(&self.lever_floor).flatten().copied().collect();
+        let scales: Vec<NodeId> =
+            self.col_scale.iter().chain(&self.lever_floor).flatten().chain(&self.row_scale).copied().collect();
         let unknown = g.leaves_of(&scales).into_iter().any(|l| matches!(l, Leaf::Unknown(u) if !solved[u as usize]));
         if !unknown {
             return None;

@@ -15,9 +15,14 @@
 //! magnitude of the block's own rows over that row's magnitude (see [`super::magnitudes`]): a
 //! change of unit, from the row's terms to the block's, which makes the column's entries alike
 //! and its largest one the same in every unit of length. Rows of the block's own unit are left
-//! as they are (most mechanisms have only those, and their factorisations are unchanged). A block
-//! whose own rows have more than one unit is left as it is too: its rows would need weighing
-//! themselves, which the analogs' factorisations do not do.
+//! as they are (most mechanisms have only those, and their factorisations are unchanged).
+//!
+//! A block whose own rows have more than one unit (a loop and a gear's equation solved
+//! together: a geared five-bar) cannot be made unit-free by its columns alone, whatever they are
+//! divided by. Its factorisation divides each row by its magnitude first
+//! ([`BlockPlan::row_scale`]), and each column by the largest of its entries over their rows'
+//! magnitudes, later blocks' rows included. Where such a block has a lever floor (a magnitude of
+//! one of its rows, in that row's unit, which the floors no longer tell), it is left as it is.
 
 use super::block_plan::BlockPlan;
 use super::magnitudes::Magnitudes;
@@ -25,8 +30,9 @@ use crate::graph::dag::{Graph, NodeId};
 
 /// Weighs the entries of `bp`'s column magnitudes that lie in rows of another unit than the
 /// block's own (`power[e]`: equation `e`'s power of length, `None` where not inferred) into the
-/// block's unit, in place (see the module documentation). `jac_full` holds the rows of the full
-/// Jacobian, `residuals` every equation's residual.
+/// block's unit, in place, or gives a block of rows of several units its row scales (see the
+/// module documentation). `jac_full` holds the rows of the full Jacobian, `residuals` every
+/// equation's residual.
 pub fn weigh(
     g: &mut Graph,
     mags: &mut Magnitudes,
@@ -35,7 +41,13 @@ pub fn weigh(
     residuals: &[NodeId],
     power: &[Option<i32>],
 ) {
-    let Some(own) = own_power(bp, power) else { return };
+    let own = match own_power(bp, power) {
+        Some(own) => own,
+        None if mixed(bp, power) && bp.lever_floor.iter().all(Vec::is_empty) => {
+            return by_rows(g, mags, bp, jac_full, residuals);
+        }
+        None => return,
+    };
     let foreign = |e: usize| !bp.equations.contains(&e) && power[e] != Some(own);
     let reaches_foreign =
         bp.unknowns.iter().any(|&u| (0..jac_full.len()).any(|e| foreign(e) && !g.is_zero(jac_full[e][u])));
@@ -46,22 +58,53 @@ pub fn weigh(
     // of a row whose terms happen to be small).
     let own_magnitude = bp.scale.iter().copied().reduce(|a, b| g.add(a, b)).unwrap_or_else(|| g.one());
     for (c, &u) in bp.unknowns.iter().enumerate() {
-        let mut column = Vec::new();
-        for (e, row) in jac_full.iter().enumerate() {
-            let entry = row[u];
-            if g.is_zero(entry) {
-                continue;
+        bp.col_scale[c] = column(g, jac_full, u, |g, e, entry| {
+            if !foreign(e) {
+                return entry;
             }
-            column.push(if foreign(e) {
-                let row_magnitude = mags.of(g, residuals[e]);
-                let weight = g.div(own_magnitude, row_magnitude);
-                g.mul(entry, weight)
-            } else {
-                entry
-            });
-        }
-        bp.col_scale[c] = column;
+            let row_magnitude = mags.of(g, residuals[e]);
+            let weight = g.div(own_magnitude, row_magnitude);
+            g.mul(entry, weight)
+        });
     }
+}
+
+/// Whether `bp` has rows of more than one unit, or of one not inferred, among several.
+fn mixed(bp: &BlockPlan, power: &[Option<i32>]) -> bool {
+    let first = power[bp.equations[0]];
+    bp.equations.len() > 1 && bp.equations.iter().any(|&e| power[e].is_none() || power[e] != first)
+}
+
+/// A block of rows of several units: each row divided by its magnitude, each column's entries
+/// over their rows' magnitudes.
+fn by_rows(g: &mut Graph, mags: &mut Magnitudes, bp: &mut BlockPlan, jac_full: &[Vec<NodeId>], residuals: &[NodeId]) {
+    for (c, &u) in bp.unknowns.iter().enumerate() {
+        bp.col_scale[c] = column(g, jac_full, u, |g, e, entry| {
+            let row_magnitude = match bp.equations.iter().position(|&own| own == e) {
+                Some(r) => bp.scale[r],
+                None => mags.of(g, residuals[e]),
+            };
+            g.div(entry, row_magnitude)
+        });
+    }
+    bp.row_scale = bp.scale.clone();
+}
+
+/// The non-zero entries of unknown `u`'s column of the full Jacobian, in row order, each as
+/// `entry(g, row, node)` makes it.
+fn column(
+    g: &mut Graph,
+    jac_full: &[Vec<NodeId>],
+    u: usize,
+    mut entry: impl FnMut(&mut Graph, usize, NodeId) -> NodeId,
+) -> Vec<NodeId> {
+    let mut out = Vec::new();
+    for (e, row) in jac_full.iter().enumerate() {
+        if !g.is_zero(row[u]) {
+            out.push(entry(g, e, row[u]));
+        }
+    }
+    out
 }
 
 /// The power of length shared by every row of `bp`, if they share one.

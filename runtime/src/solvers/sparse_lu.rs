@@ -108,6 +108,13 @@ impl<const N: usize, const NNZ: usize, const NLU: usize, E: SparseSteps<N, NLU>>
         lu.refactor(self, &[1.0; N], col_scale);
     }
 
+    /// [`SparseJac::factor_cols_into`] with row `r` divided by `row_scale[r]` first: the
+    /// analogs' factorisation of a block whose rows have more than one unit (their magnitudes).
+    #[inline]
+    pub fn factor_scaled_into(&self, lu: &mut SparseLu<N, NLU, E>, row_scale: &[f64; N], col_scale: &[f64; N]) {
+        lu.refactor(self, row_scale, col_scale);
+    }
+
     /// The first row holding a non-finite value (cold-path diagnosis of a failed
     /// factorisation).
     #[cold]

@@ -74,7 +74,8 @@ impl Kernel<'_> {
         } else if keeps_lu(self.mode, bp) {
             TokenStream::new()
         } else {
-            quote!(let #lu = #rt::Lu::<#n>::factor_cols(&__j, [#(#scale),*]);)
+            let f = self.factor_general(bp, &quote!(__j), &scale);
+            quote!(let #lu = #f;)
         };
         // Deferred, the end tests the smallest pivot ratio `__health` records.
         let checked = self.deferred.then(|| quote!(__CHECKED &&));
@@ -94,6 +95,12 @@ impl Kernel<'_> {
     fn sparse_factor(&self, b: usize, sp: &Sparse, rv: &Ident) -> TokenStream {
         let (bp, rt, bl) = (&self.plan.blocks[b], &self.rt, lit(b));
         let (lu, scale) = (format_ident!("__lu{}", b), self.col_scales(bp));
+        let factor = if bp.row_scale.is_empty() {
+            quote!(__j.factor_cols_into(&mut #lu, &[#(#scale),*]);)
+        } else {
+            let rows = self.names.operands(self.g, &bp.row_scale);
+            quote!(__j.factor_scaled_into(&mut #lu, &[#(#rows),*], &[#(#scale),*]);)
+        };
         let (j, slot) = if self.mode == Mode::At {
             (
                 sparse::jac_value(sp, b, self.g, self.names, &bp.jac),
@@ -107,7 +114,7 @@ impl Kernel<'_> {
         quote! {
             let __j = #j;
             #slot
-            __j.factor_cols_into(&mut #lu, &[#(#scale),*]);
+            #factor
             if !(#lu.pivot_ratio() >= __cfg.singular_tol) {
                 let __r = __j.first_bad_row().or(#rt::first_bad_row(#rv));
                 return ::core::result::Result::Err(#rt::singular(self, #bl, #lu.pivot_ratio(), __cfg, __x, __r));

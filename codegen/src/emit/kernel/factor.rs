@@ -55,7 +55,10 @@ impl Kernel<'_> {
     /// factorisation with fewer checks; `Inverse2::in_cols` for a 2x2 block: its explicit
     /// inverse, with the LU's pivot ratio); otherwise the general `factor_cols` with `scale`.
     pub(super) fn factor(&self, bp: &BlockPlan, jrows: &TokenStream, scale: &[TokenStream]) -> TokenStream {
-        let (rt, n) = (&self.rt, lit(bp.unknowns.len()));
+        if !bp.row_scale.is_empty() {
+            return self.factor_general(bp, jrows, scale);
+        }
+        let rt = &self.rt;
         let k = (bp.unknowns.len() == 1).then(|| bp.col_scale[0].iter().position(|&e| e == bp.jac[0][0])).flatten();
         match (bp.unknowns.len(), k) {
             (1, Some(k)) => {
@@ -87,7 +90,19 @@ impl Kernel<'_> {
                     quote!(#rt::Inverse2::in_cols_floored(&#jrows, [#(#cols),*], [#(#floors),*]))
                 }
             }
-            _ => quote!(#rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*])),
+            _ => self.factor_general(bp, jrows, scale),
         }
+    }
+
+    /// The general factorisation of `jrows`: its columns divided by `scale`, and its rows by the
+    /// block's row scales first where it has them (rows of several units, see
+    /// `plan::column_units`).
+    pub(super) fn factor_general(&self, bp: &BlockPlan, jrows: &TokenStream, scale: &[TokenStream]) -> TokenStream {
+        let (rt, n) = (&self.rt, lit(bp.unknowns.len()));
+        if bp.row_scale.is_empty() {
+            return quote!(#rt::Lu::<#n>::factor_cols(&#jrows, [#(#scale),*]));
+        }
+        let rows = self.names.operands(self.g, &bp.row_scale);
+        quote!(#rt::Lu::<#n>::factor_scaled(&#jrows, [#(#rows),*], [#(#scale),*]))
     }
 }

@@ -73,7 +73,9 @@ pub(super) fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
                 Solve::Linear { .. } => {
                     let rhs = bp.solve.linear_rhs().unwrap_or_default().iter().copied();
                     let matrix = bp.jac.concat().into_iter().chain(rhs);
-                    (matrix.chain(bp.col_scale.concat()).chain(bp.lever_floor.concat()).collect(), vec![])
+                    let scales =
+                        bp.col_scale.concat().into_iter().chain(bp.lever_floor.concat()).chain(bp.row_scale.clone());
+                    (matrix.chain(scales).collect(), vec![])
                 }
                 // The coefficients; a position-only solve also tests its levers against their
                 // floors (see `closed_block`).
@@ -104,6 +106,7 @@ pub(super) fn plan_scopes(plan: &Plan, mode: Mode, sens: bool) -> Scopes {
         if !keeps_lu(mode, bp) {
             roots.extend(bp.col_scale.concat());
             roots.extend(bp.lever_floor.concat());
+            roots.extend(&bp.row_scale);
         }
         // The Jacobian, where no position solve evaluated it for this kernel.
         let jacobian = match bp.solve {
