@@ -11,11 +11,14 @@
 //! `1.8e-9` at `k = 1e-9` where it is `1` at `k = 1`, and a sweep stopped there as near a singular
 //! position.
 //!
-//! An entry in a row of another unit (or of one not inferred) is therefore weighed by the
-//! magnitude of the block's own rows over that row's magnitude (see [`super::magnitudes`]): a
-//! change of unit, from the row's terms to the block's, which makes the column's entries alike
-//! and its largest one the same in every unit of length. Rows of the block's own unit are left
-//! as they are (most mechanisms have only those, and their factorisations are unchanged).
+//! An entry in a row of another unit is therefore weighed by the magnitude of the block's own
+//! rows over that row's magnitude (see [`super::magnitudes`]): a change of unit, from the row's
+//! terms to the block's, which makes the column's entries alike and its largest one the same in
+//! every unit of length. Rows of the block's own unit are left as they are (most mechanisms have
+//! only those, and their factorisations are unchanged), and so are rows whose unit the
+//! dimensions do not tell (a cam's law through `clamp`): the magnitude of such a row may hold
+//! terms its entries do not (a law's NaN, where its Jacobian entries are finite), and weighing
+//! by it changed the dwell cam's sweeps.
 //!
 //! A block whose own rows have more than one unit (a loop and a gear's equation solved
 //! together: a geared five-bar) cannot be made unit-free by its columns alone, whatever they are
@@ -29,9 +32,9 @@ use super::magnitudes::Magnitudes;
 use crate::graph::dag::{Graph, NodeId};
 
 /// Weighs the entries of `bp`'s column magnitudes that lie in rows of another unit than the
-/// block's own (`power[e]`: equation `e`'s power of length, `None` where not inferred) into the
-/// block's unit, in place, or gives a block of rows of several units its row scales (see the
-/// module documentation). `jac_full` holds the rows of the full Jacobian, `residuals` every
+/// block's own (`power[e]`: equation `e`'s power of length, `None` where not inferred, which is
+/// never weighed) into the block's unit, in place, or gives a block of rows of several units its
+/// row scales (see the module documentation). `jac_full` holds the rows of the full Jacobian, `residuals` every
 /// equation's residual.
 pub fn weigh(
     g: &mut Graph,
@@ -48,7 +51,7 @@ pub fn weigh(
         }
         None => return,
     };
-    let foreign = |e: usize| !bp.equations.contains(&e) && power[e] != Some(own);
+    let foreign = |e: usize| !bp.equations.contains(&e) && power[e].is_some_and(|p| p != own);
     let reaches_foreign =
         bp.unknowns.iter().any(|&u| (0..jac_full.len()).any(|e| foreign(e) && !g.is_zero(jac_full[e][u])));
     if !reaches_foreign {
@@ -69,10 +72,10 @@ pub fn weigh(
     }
 }
 
-/// Whether `bp` has rows of more than one unit, or of one not inferred, among several.
+/// Whether `bp` has rows of more than one unit, each inferred.
 fn mixed(bp: &BlockPlan, power: &[Option<i32>]) -> bool {
     let first = power[bp.equations[0]];
-    bp.equations.len() > 1 && bp.equations.iter().any(|&e| power[e].is_none() || power[e] != first)
+    bp.equations.iter().all(|&e| power[e].is_some()) && bp.equations.iter().any(|&e| power[e] != first)
 }
 
 /// A block of rows of several units: each row divided by its magnitude, each column's entries
@@ -141,6 +144,21 @@ mod tests {
         // The gear's entry `-2`, times a weight.
         let Op::Mul(entry, _) = plan.graph.op(column[2]) else { panic!("not weighed: {:?}", plan.graph.op(column[2])) };
         assert_eq!(entry, plan.jac_full[2][1]);
+    }
+
+    /// A row whose unit the dimensions do not tell (a square of an angle) is not weighed: its
+    /// magnitude may hold terms its entries do not.
+    #[test]
+    fn an_entry_in_a_row_of_no_known_unit_is_not() {
+        let plan = plan_of(
+            "pub struct G { params a, b, c, d; input phi; unknowns beta = 0.5, gamma = 1.5, th3 = 3.0;
+                loop abcd: a @ phi + b @ beta == (d, 0) + c @ gamma; eq g: th3 == gamma * gamma; }",
+        );
+        let loop_block = &plan.blocks[0];
+        for column in &loop_block.col_scale {
+            assert!(column.iter().all(|&e| plan.jac_full.iter().any(|row| row.contains(&e))), "{column:?}");
+        }
+        assert!(loop_block.row_scale.is_empty());
     }
 
     /// A Watt chain: the first dyad's coupler column reaches the second loop's rows, which are
