@@ -822,9 +822,24 @@ fn parse_equation(input: ParseStream, what: &str) -> syn::Result<(Ident, Expr, E
     if !input.peek(Token![==]) {
         return Err(input.error(format!("expected `==`: `{what} {name}: lhs == rhs;`")));
     }
+    if let Some(e) = triple_equals(input) {
+        return Err(e);
+    }
     let eq = input.parse::<Token![==]>()?.spans[0];
     let rhs = parse_expr(input)?;
     Ok((name, lhs, rhs, eq))
+}
+
+/// The error for `===` (the strict equality of JavaScript and PHP) where the `==` of an
+/// equation belongs, underlining its three characters: it said "expected a value, found `=`" of
+/// the third. `None` for anything else.
+fn triple_equals(input: ParseStream) -> Option<syn::Error> {
+    let joint = |p: &proc_macro2::Punct| p.as_char() == '=' && p.spacing() == proc_macro2::Spacing::Joint;
+    let (first, rest) = input.cursor().punct().filter(|(p, _)| joint(p))?;
+    let (_, rest) = rest.punct().filter(|(p, _)| joint(p))?;
+    let (third, _) = rest.punct().filter(|(p, _)| p.as_char() == '=')?;
+    let range = SpanRange { start: first.span(), end: third.span() };
+    Some(range.error("`===` is not an operator: an equation is written with `==`, `lhs == rhs`"))
 }
 
 /// Skips to just after the next top-level `;` (error recovery).
