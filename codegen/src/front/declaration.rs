@@ -124,7 +124,7 @@ fn parse_def_into(input: ParseStream, errors: &mut Errors) -> Option<MechanismDe
     }
     let name: Ident = match input.parse() {
         Ok(n) => n,
-        Err(_) => return fail(errors, input.error("expected the mechanism's name: `pub struct Name { ... }`")),
+        Err(_) => return fail(errors, keyword_as_name(input)),
     };
     let mut def = MechanismDef { docs, options, vis, name, items: Vec::new(), body: Span::call_site() };
     def.body = def.name.span();
@@ -299,4 +299,24 @@ fn parse_body(input: ParseStream, def: &mut MechanismDef, errors: &mut Errors) -
         }
     }
     Ok(())
+}
+
+/// The error for what stands where the mechanism's name belongs and is none: a Rust keyword
+/// (`pub struct Self`, `pub struct type`), which is said to be one, or anything else.
+fn keyword_as_name(input: ParseStream) -> syn::Error {
+    match input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
+        Ok(word) if word == "_" => syn::Error::new(
+            word.span(),
+            "`_` is Rust's placeholder, not a name, and cannot be the mechanism's name: give it a name, \
+             `pub struct Name { ... }`",
+        ),
+        Ok(word) => syn::Error::new(
+            word.span(),
+            format!(
+                "`{word}` is a Rust keyword and cannot be the mechanism's name, which names the generated types: \
+                 choose another name, `pub struct Name {{ ... }}`"
+            ),
+        ),
+        Err(_) => input.error("expected the mechanism's name: `pub struct Name { ... }`"),
+    }
 }
