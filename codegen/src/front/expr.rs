@@ -329,6 +329,32 @@ fn number_without_leading_digit(input: ParseStream) -> Option<syn::Error> {
     Some(range.error(format!("a number starts with a digit: write `0.{lit}`")))
 }
 
+/// The error for a Rust keyword called as a function where a value belongs (`if(x)`, `fn(x)`):
+/// it is no function of the language; where a built-in does its work (`min`, `max`, `clamp`,
+/// `abs` for a value chosen by a condition) the message names it, and it lists the functions.
+/// `None` for anything else. (`mod(x, p)` is taken for a call of an unsupported function,
+/// whose message says to write `wrap`.)
+fn keyword_called(input: ParseStream) -> Option<syn::Error> {
+    let (word, rest) = input.cursor().ident().filter(|(word, _)| word != "_")?;
+    rest.group(proc_macro2::Delimiter::Parenthesis)?;
+    let hint = match word.to_string().as_str() {
+        "if" | "else" | "match" => {
+            "; a value chosen by a condition is written with `min`, `max`, `clamp` or `abs` (`max(x, 0)`, \
+             `clamp(x, lo, hi)`)"
+        }
+        "fn" => "; call a built-in function by its name (`sin(x)`), and name a value with `let`",
+        "return" => "; write the value alone",
+        _ => "",
+    };
+    Some(syn::Error::new(
+        word.span(),
+        format!(
+            "`{word}` is a Rust keyword, not a function of the language{hint}\navailable functions: {}",
+            crate::semantics::builtins::listing()
+        ),
+    ))
+}
+
 /// Parses one expression, stopping before `==`, `;`, `,` or the end of the input.
 pub fn parse_expr(input: ParseStream) -> syn::Result<Expr> {
     Parser { depth: 0 }.expr(input, 0)
@@ -682,6 +708,9 @@ impl Parser {
             return Err(e);
         }
         if let Some(e) = misplaced_doc_comment(input) {
+            return Err(e);
+        }
+        if let Some(e) = keyword_called(input) {
             return Err(e);
         }
         // The operator or token where a value was expected (a joint operator such as `==` whole).
