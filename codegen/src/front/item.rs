@@ -436,21 +436,22 @@ fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::
         DeclKind::Inputs => "input phi;` or `inputs th1, th2;",
         DeclKind::Unknowns => "unknowns psi = 0.3, x;",
     };
-    // `input: phi;`, `inputs (th1, th2);`: the names after punctuation of another notation.
-    // Said, and the names read all the same, so that they keep their fields in the fallback
-    // types (without them, `m.solve(0.5)` had an error of its own at the macro's call).
-    if input.peek(Token![:]) && !input.peek(Token![::]) {
-        let colon = input.parse::<Token![:]>()?;
-        errors
-            .push(syn::Error::new(colon.span, format!("no `:` after the keyword: write the names after it, `{list}`")));
-    } else if let Some((_, _, span, after)) = input.cursor().any_group()
+    // `input: phi;`, `inputs (th1, th2);`, `input: (phi);`: the names after punctuation of
+    // another notation. Said once, and the names read all the same, so that they keep their
+    // fields in the fallback types (without them, `m.solve(0.5)` had an error of its own at the
+    // macro's call).
+    let colon =
+        if input.peek(Token![:]) && !input.peek(Token![::]) { Some(input.parse::<Token![:]>()?.span) } else { None };
+    if let Some((_, _, span, after)) = input.cursor().any_group()
         && !input.peek(syn::token::Brace)
         && after.punct().is_some_and(|(p, _)| p.as_char() == ';')
     {
-        errors.push(
-            SpanRange { start: span.open(), end: span.close() }
+        errors.push(match colon {
+            Some(colon) => SpanRange { start: colon, end: span.close() }
+                .error(format!("no `:` and no brackets around the names: write them after the keyword, `{list}`")),
+            None => SpanRange { start: span.open(), end: span.close() }
                 .error(format!("no brackets around the names: write them after the keyword, `{list}`")),
-        );
+        });
         let content;
         if input.peek(syn::token::Paren) {
             syn::parenthesized!(content in input);
@@ -464,6 +465,9 @@ fn parse_decls(input: ParseStream, kind: DeclKind, errors: &mut Errors) -> syn::
             skip_to_separator(&content);
         }
         return Ok(decls);
+    }
+    if let Some(colon) = colon {
+        errors.push(syn::Error::new(colon, format!("no `:` after the keyword: write the names after it, `{list}`")));
     }
     let mut decls = Vec::new();
     loop {
