@@ -525,10 +525,14 @@ fn parse_decl(input: ParseStream, kind: DeclKind, name: &mut Option<Ident>) -> s
     if !input.peek(Ident) {
         // A keyword where a name belongs (`input self;`): the list keeps a stand-in, so that
         // the fallback types have as many inputs as written (`m.solve(0.5)` still converts).
-        // A keyword before the name (`params pub r`) keeps that name's field.
+        // Not a parameter's: the mechanism's struct literal (`SliderCrank { r: 1.0 }`), which
+        // cannot name the keyword, would miss the stand-in's field. A keyword before the name
+        // (`params pub r`) keeps that name's field.
         if let Some((_, _, after)) = modifier_before_name(input) {
             *name = Some(after);
-        } else if let Ok(word) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any) {
+        } else if kind != DeclKind::Params
+            && let Ok(word) = input.fork().call(<Ident as syn::ext::IdentExt>::parse_any)
+        {
             *name = Some(Ident::new(&format!("__kinloop_keyword_{word}"), word.span()));
         }
         let what = match kind {
