@@ -52,6 +52,11 @@ pub use semantics::model;
 pub use serde_derive::{derive_deserialize, derive_serialize};
 pub use structure::{Block, diag};
 
+/// The message for a binary or octal number with a digit its base does not have (`0b102`), which
+/// the run-time reader's lexer refuses: the one `mechanism!` gives.
+#[doc(hidden)]
+pub use front::expr::digit_outside_its_base;
+
 use front::declaration;
 use proc_macro2::TokenStream;
 use structure::analysis;

@@ -688,7 +688,10 @@ fn lex_message(rest: &str, e: &proc_macro2::LexError) -> String {
         }
         (Some(c), _) if c.is_ascii_digit() => {
             let number: String = rest.chars().take_while(|c| c.is_alphanumeric() || matches!(c, '_' | '.')).collect();
-            format!("invalid number `{number}`; write a number such as `2.5`, `1e-3` or `0x1F`")
+            // A digit its base does not have (`0b102`): the macro's words (after the compiler's
+            // own lexer error, its error at the same number).
+            kinloop_codegen::digit_outside_its_base(&number)
+                .unwrap_or_else(|| format!("invalid number `{number}`; write a number such as `2.5`, `1e-3` or `0x1F`"))
         }
         (Some('\''), _) => {
             "unexpected `'`: a declaration has no character literals; write a number or a name".to_string()

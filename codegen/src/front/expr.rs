@@ -377,6 +377,17 @@ fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
             format!("`{digits}{suffix}` is not a number: angles are in radians already, write `{digits}`"),
         ));
     }
+    // `1e`: an exponent without its digits (the compiler's lexer says so first, and hands the
+    // token on as a number with a suffix `e`), not a product with a name `e`.
+    if suffix == "e" || suffix == "E" {
+        return Err(syn::Error::new(
+            span,
+            format!("`{digits}{suffix}` is not a number: an exponent needs its digits, as in `{digits}{suffix}3`"),
+        ));
+    }
+    if let Some(message) = digit_outside_its_base(&format!("{digits}{suffix}")) {
+        return Err(syn::Error::new(span, message));
+    }
     if !suffix.is_empty() && !TYPES.contains(&suffix) && suffix.starts_with(|c: char| c.is_alphabetic()) {
         // `2pi`: a name written right after a number, as in a textbook.
         return Err(syn::Error::new(
@@ -403,6 +414,26 @@ fn number(digits: &str, suffix: &str, span: Span) -> syn::Result<f64> {
         ));
     }
     Ok(value)
+}
+
+/// The message for a binary or octal number written with a digit its base does not have
+/// (`0b102`, `0o78`): which digit, and the digits of the base. The compiler's lexer says so first
+/// and hands the token on as `0` with a suffix (`b102`), not a product with a name; the run-time
+/// reader's lexer refuses the token, and says the same. `None` for any other text.
+pub fn digit_outside_its_base(number: &str) -> Option<String> {
+    let (base, digits, last) = match number.get(..2)? {
+        "0b" => ("a binary", "`0` and `1`", '1'),
+        "0o" => ("an octal", "`0` to `7`", '7'),
+        _ => return None,
+    };
+    let rest = &number[2..];
+    let bad = rest.chars().find(|c| *c != '_' && !('0'..=last).contains(c))?;
+    // A letter ends the digits (a suffix, `0b1f64`): only a decimal digit can be one outside the
+    // base.
+    if !bad.is_ascii_digit() || rest.chars().take_while(|c| *c != bad).any(|c| c.is_alphabetic()) {
+        return None;
+    }
+    Some(format!("`{number}` is not a number: `{bad}` is not a digit of {base} number, which has only {digits}"))
 }
 
 /// The error for a value in degrees written with `deg` as a unit (`30 deg`, `30deg`, `deg 30`)
