@@ -337,6 +337,10 @@ fn number_without_leading_digit(input: ParseStream) -> Option<syn::Error> {
 fn keyword_called(input: ParseStream) -> Option<syn::Error> {
     let (word, rest) = input.cursor().ident().filter(|(word, _)| word != "_")?;
     rest.group(proc_macro2::Delimiter::Parenthesis)?;
+    // A name that is no keyword (syn reads it as an identifier) is not one called.
+    if syn::parse_str::<Ident>(&word.to_string()).is_ok() {
+        return None;
+    }
     let hint = match word.to_string().as_str() {
         "if" | "else" | "match" => {
             "; a value chosen by a condition is written with `min`, `max`, `clamp` or `abs` (`max(x, 0)`, \
@@ -843,6 +847,26 @@ mod tests {
             Ok(e) => show(&e),
             Err(e) => format!("error: {e}"),
         }
+    }
+
+    /// Only a keyword called as a function is said to be one: a name is not, wherever the
+    /// error path meets it.
+    #[test]
+    fn a_keyword_called_is_told_and_a_name_is_not() {
+        let called = |s: &str| {
+            let ts: TokenStream = s.parse().unwrap();
+            (|input: ParseStream| {
+                let told = keyword_called(input).map(|e| e.to_string());
+                input.parse::<TokenStream>()?;
+                Ok(told)
+            })
+            .parse2(ts)
+            .unwrap()
+        };
+        assert!(called("if(x)").is_some_and(|m| m.starts_with("`if` is a Rust keyword")));
+        assert!(called("match(x, 1)").is_some_and(|m| m.starts_with("`match` is a Rust keyword")));
+        assert_eq!(called("sin(x)"), None);
+        assert_eq!(called("iff(x)"), None);
     }
 
     #[test]
