@@ -3,6 +3,7 @@
 //! and with the factorisations the emitted fused kernel uses.
 
 use crate::closed::ClosedProg;
+use crate::count::Count;
 use crate::dense;
 use crate::factor::{Fac, MAX_DENSE, max_abs};
 use crate::levers::Levers;
@@ -39,7 +40,8 @@ impl std::fmt::Display for StepFailure {
             }
             StepFailure::Block(BlockFailure::NoConvergence { row, iterations, residual }) => write!(
                 f,
-                "no convergence after {iterations} iterations: the residual is {residual:e} in the block's row {row}"
+                "no convergence after {}: the residual is {residual:e} in the block's row {row}",
+                Count(iterations as usize, "iteration")
             ),
             StepFailure::Block(BlockFailure::NoAssembly { row, residual, .. }) => {
                 write!(f, "the loops cannot close here: the residual stalls at {residual:e} in the block's row {row}")

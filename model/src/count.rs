@@ -1,11 +1,8 @@
 //! How kinloop writes a count in a message: the number and its noun, singular for one.
 
-use std::fmt;
-
 /// A count `n` of the regular noun `noun` (given in the singular) as a message writes it: `1
-/// input`, `0 inputs`, `2 inputs`. The noun takes an `s` for any count but one, so a message
-/// reads right whatever the count (`gives 1 input`, never `gives 1 inputs`). Public so that the
-/// command line writes its counts as the model's messages do.
+/// input`, `0 inputs`, `2 inputs`: the runtime's [`kinloop_runtime::Count`], whose messages count
+/// alike. Public here so that the command line writes its counts as the model's messages do.
 ///
 /// ```
 /// use kinloop_model::Count;
@@ -13,22 +10,16 @@ use std::fmt;
 /// assert_eq!(Count(0, "value").to_string(), "0 values");
 /// assert_eq!(Count(3, "unknown").to_string(), "3 unknowns");
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Count<'a>(pub usize, pub &'a str);
-
-impl fmt::Display for Count<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let Count(n, noun) = *self;
-        write!(f, "{n} {noun}{}", if n == 1 { "" } else { "s" })
-    }
-}
+pub use kinloop_runtime::Count;
 
 #[cfg(test)]
 mod tests {
     use super::Count;
+    use crate::StepFailure;
     use crate::{Model, ParamScanConfig};
     use kinloop_runtime::dims::{KinBuf, Sizes};
     use kinloop_runtime::dynamics::SpeedLaw;
+    use kinloop_runtime::generated::BlockFailure;
 
     /// A slider-crank of one input and two unknowns, with a body: dynamics to run.
     const SLIDER_CRANK: &str = "pub struct SliderCrank {
@@ -62,5 +53,9 @@ mod tests {
         let r = m.scan(&["r"], &[[1.0, 2.0]], &spec, |_: &[f64]| 0, |a, _: &[f64], _: &KinBuf| a);
         let e = r[0].clone().expect_err("two values for one parameter").to_string();
         assert!(e.contains("a parameter set of 2 values for the 1 parameter scanned"), "{e}");
+        // A block's failure after one iteration, as the evaluator says it.
+        let fail = BlockFailure::NoConvergence { row: 0, iterations: 1, residual: 0.5 };
+        let e = StepFailure::Block(fail).to_string();
+        assert!(e.starts_with("no convergence after 1 iteration: "), "{e}");
     }
 }

@@ -132,6 +132,7 @@ fn names_and_missing_sensitivities_are_typed_errors() {
 #[test]
 fn the_kernel_refuses_another_parameter_count_and_puts_the_parameters_back() {
     use kinloop::{Error, SensKernel, SweepConfig};
+    use kinloop_model::Count;
     use std::panic::{AssertUnwindSafe, catch_unwind};
     let mut model = read(COUPLER_TEXT);
     let declared = model.param_values().to_vec();
@@ -140,7 +141,8 @@ fn the_kernel_refuses_another_parameter_count_and_puts_the_parameters_back() {
         let now = |k: &kinloop_model::ModelKernel<'_>| (0..6).map(|i| Some(k.param(i))).collect::<Vec<_>>();
         for p in [&[1.0][..], &[1.0; 7]] {
             let e = k.with_params(p, |_| unreachable!("not called with a wrong length")).unwrap_err();
-            let says = format!("{} parameter values for the 6 parameters of `CouplerFourBar`", p.len());
+            // One value is one: "1 parameter value".
+            let says = format!("{} for the 6 parameters of `CouplerFourBar`", Count(p.len(), "parameter value"));
             assert!(matches!(&e, Error::InvalidArgument(m) if m.contains(&says)), "{e}");
             assert_eq!(now(&k), declared);
         }

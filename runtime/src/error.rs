@@ -3,7 +3,7 @@
 //! equations.
 
 use crate::events::EventKind;
-use crate::number::Number;
+use crate::number::{Count, Number};
 use std::borrow::Cow;
 use std::fmt;
 
@@ -61,8 +61,9 @@ pub enum Error {
     },
     /// Newton's method reached its iteration limit.
     #[error(
-        "Newton's method did not converge in {iterations} iterations {at}: residual {residual:e} \
-         in equation `{equation}`; give a closer initial guess or raise `max_iterations`"
+        "Newton's method did not converge in {} {at}: residual {residual:e} in equation `{equation}`; give a \
+         closer initial guess or raise `max_iterations`",
+        Count(*iterations as usize, "iteration")
     )]
     NoConvergence {
         /// Iterations performed.

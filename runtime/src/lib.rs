@@ -62,7 +62,7 @@ pub use kinds::{LENGTH_UNIT, QuantityKind};
 pub use mechanism::kernel::{Compiled, CompiledSens, Kernel, SensKernel, SensState};
 pub use mechanism::{Mechanism, Sensitivities};
 pub use named::{Named, NamedSensitivities};
-pub use number::Number;
+pub use number::{Count, Number};
 pub use paths::assembles::{Assembly, PathEntry};
 pub use paths::config::{AtSingular, SweepConfig};
 pub use paths::outcome::{SweepResult, SweepStop};

@@ -86,6 +86,28 @@ impl fmt::Display for Number {
     }
 }
 
+/// A count `n` of the regular noun `noun` (given in the singular) as a message writes it: `1
+/// iteration`, `0 iterations`, `2 iterations`. The noun takes an `s` for any count but one, so a
+/// message reads right whatever the count (`did not converge in 1 iteration`, never `in 1
+/// iterations`). Public so that the run-time reader and the command line write their counts as
+/// the library's messages do (`kinloop_model::Count` is this type).
+///
+/// ```
+/// use kinloop_runtime::Count;
+/// assert_eq!(Count(1, "input").to_string(), "1 input");
+/// assert_eq!(Count(0, "value").to_string(), "0 values");
+/// assert_eq!(Count(3, "unknown").to_string(), "3 unknowns");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Count<'a>(pub usize, pub &'a str);
+
+impl fmt::Display for Count<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let Count(n, noun) = *self;
+        write!(f, "{n} {noun}{}", if n == 1 { "" } else { "s" })
+    }
+}
+
 /// The sign of `v`, `0` at zero and at NaN: the macro graph's `sign` (its constant folder's), and
 /// "no orientation to compare" where the paths compare signs.
 pub(crate) fn sign(v: f64) -> f64 {

@@ -5,7 +5,7 @@
 //! [`Mechanism`](crate::Mechanism) trait, above this module.
 
 use crate::kin::Kin;
-use crate::number::Number;
+use crate::number::{Count, Number};
 use crate::table_units;
 use std::collections::VecDeque;
 use std::io::{self, Write};
@@ -106,10 +106,11 @@ impl TryFrom<TableRepr> for Table {
     fn try_from(t: TableRepr) -> Result<Table, String> {
         let width = t.columns.len();
         if let Some((k, row)) = t.rows.iter().enumerate().find(|(_, r)| r.len() != width) {
-            return Err(format!("row {} of the table has {} values for {width} columns", k + 1, row.len()));
+            let (values, columns) = (Count(row.len(), "value"), Count(width, "column"));
+            return Err(format!("row {} of the table has {values} for {columns}", k + 1));
         }
         if t.units.len() > width {
-            return Err(format!("the table has {} units for {width} columns", t.units.len()));
+            return Err(format!("the table has {} for {}", Count(t.units.len(), "unit"), Count(width, "column")));
         }
         // As `read_csv` refuses it: `Table::column` would find the first alone.
         if let Some((name, j, k)) = repeated(&t.columns) {
@@ -298,7 +299,8 @@ fn no_columns(rows: usize) -> io::Result<()> {
         return Ok(());
     }
     let message = format!(
-        "a table of {rows} rows and no columns cannot be written as CSV, which has no line for a row of no values"
+        "a table of {} and no columns cannot be written as CSV, which has no line for a row of no values",
+        Count(rows, "row")
     );
     Err(io::Error::new(io::ErrorKind::InvalidInput, message))
 }
@@ -351,8 +353,9 @@ fn check_units_to_write(units: usize, columns: usize) -> io::Result<()> {
     Err(io::Error::new(
         io::ErrorKind::InvalidInput,
         format!(
-            "the table has {units} units for {columns} columns: the CSV header holds one unit per column, and \
-             the others would be lost"
+            "the table has {} for {}: the CSV header holds one unit per column, and the others would be lost",
+            Count(units, "unit"),
+            Count(columns, "column")
         ),
     ))
 }
@@ -373,9 +376,9 @@ impl Table {
     pub fn push(&mut self, row: Vec<f64>) {
         assert!(
             row.len() == self.columns.len(),
-            "Table::push: a row of {} values for {} columns",
-            row.len(),
-            self.columns.len()
+            "Table::push: a row of {} for {}",
+            Count(row.len(), "value"),
+            Count(self.columns.len(), "column")
         );
         self.rows.push(row);
     }

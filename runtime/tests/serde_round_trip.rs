@@ -62,13 +62,13 @@ fn events_round_trip_without_their_static_block() {
 fn a_table_of_the_wrong_shape_is_refused_saying_where() {
     let short = r#"{"columns":["phi","x"],"rows":[[0.5,1.0],[0.75]],"units":["rad","mm"]}"#;
     let err = serde_json::from_str::<Table>(short).unwrap_err().to_string();
-    assert!(err.contains("row 2 of the table has 1 values for 2 columns"), "{err}");
+    assert!(err.contains("row 2 of the table has 1 value for 2 columns"), "{err}");
     let long = r#"{"columns":["phi"],"rows":[[0.5,1.0]]}"#;
     let err = serde_json::from_str::<Table>(long).unwrap_err().to_string();
-    assert!(err.contains("row 1 of the table has 2 values for 1 columns"), "{err}");
+    assert!(err.contains("row 1 of the table has 2 values for 1 column") && !err.contains("1 columns"), "{err}");
     let units = r#"{"columns":["phi"],"rows":[[0.5]],"units":["rad","mm"]}"#;
     let err = serde_json::from_str::<Table>(units).unwrap_err().to_string();
-    assert!(err.contains("the table has 2 units for 1 columns"), "{err}");
+    assert!(err.contains("the table has 2 units for 1 column") && !err.contains("1 columns"), "{err}");
     // A name twice, as `read_csv` refuses it: `Table::column` would find the first alone.
     let twice = r#"{"columns":["x","y","x"],"rows":[[1.0,2.0,3.0]]}"#;
     let err = serde_json::from_str::<Table>(twice).unwrap_err().to_string();

@@ -104,6 +104,8 @@ fn iteration_cap_is_no_convergence() {
     let cfg = NewtonConfig::default().with_max_iterations(1);
     let e = M.kinematics_with(2.5, &SliderDrivenUnknowns { phi: 2.0, psi: 1.0 }, &cfg).unwrap_err();
     assert!(matches!(e, Error::NoConvergence { iterations: 1, .. }), "{e}");
+    // One iteration is one, not "1 iterations".
+    assert!(e.to_string().contains("did not converge in 1 iteration in `SliderDriven`"), "{e}");
 }
 
 #[test]

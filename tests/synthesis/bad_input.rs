@@ -257,7 +257,9 @@ fn a_parameter_vector_of_another_length_is_an_error_not_a_panic() {
     let k = CompiledSens(CouplerFourBar::default());
     for p in [&[1.0][..], &[1.0; 7]] {
         let e = k.with_params(p, |_| unreachable!("not called with a wrong length")).unwrap_err();
-        let says = format!("{} parameter values for the 6 parameters of `CouplerFourBar`", p.len());
+        // One value is one: "1 parameter value".
+        let values = if p.len() == 1 { "value" } else { "values" };
+        let says = format!("{} parameter {values} for the 6 parameters of `CouplerFourBar`", p.len());
         assert!(matches!(&e, Error::InvalidArgument(m) if m.contains(&says)), "{e}");
     }
     let p = [1.1, 2.8, 2.3, 3.2, 1.7, 0.45];

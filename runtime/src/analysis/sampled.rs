@@ -12,7 +12,7 @@ use crate::events::EventKind;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, KinOf, Q, X, check_sizes};
-use crate::number::pow2_at_most;
+use crate::number::{Count, pow2_at_most};
 use crate::paths::collected::check_collected;
 use crate::paths::config::SweepConfig;
 use crate::paths::curve::{Metric, Path};
@@ -467,9 +467,10 @@ impl<K: Kernel> SampledOf<K> {
     ) -> Result<Self, Error> {
         if samples < 3 || from.as_ref() == to.as_ref() {
             return Err(Error::InvalidArgument(format!(
-                "Sampled needs from != to and at least 3 samples (got {:?} .. {:?}, {samples} samples)",
+                "Sampled needs from != to and at least 3 samples (got {:?} .. {:?}, {})",
                 from.as_ref(),
-                to.as_ref()
+                to.as_ref(),
+                Count(samples, "sample")
             )));
         }
         super::check_sample_count("samples", samples).map_err(Error::InvalidArgument)?;

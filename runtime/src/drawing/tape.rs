@@ -2,6 +2,7 @@
 //! inputs and unknowns, each reading earlier entries only, run once per state.
 
 use crate::error::Error;
+use crate::number::Count;
 
 /// Functions of one argument the tape applies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,8 +92,8 @@ pub(super) fn run(tape: &[TapeOp], params: &[f64], x: &[f64], q: &[f64]) -> Resu
     let leaf = |slice: &[f64], i: usize, what: &str| {
         slice.get(i).copied().ok_or_else(|| {
             Error::InvalidArgument(format!(
-                "the drawing reads {what} {i}, but {} {what} values were given",
-                slice.len()
+                "the drawing reads {what} {i}, but {} given",
+                Count(slice.len(), &format!("{what} value"))
             ))
         })
     };

@@ -4,7 +4,7 @@
 
 use crate::error::Error;
 use crate::kinds::QuantityKind;
-use crate::number::Number;
+use crate::number::{Count, Number};
 use std::borrow::Cow;
 
 /// What went wrong in a dynamic analysis; see the [module documentation](self).
@@ -147,8 +147,10 @@ pub enum DynamicsError {
     /// A Fourier series asked for more harmonics than its samples resolve: `n` samples of a
     /// period determine harmonics below `n / 2` only.
     #[error(
-        "{harmonics} harmonics asked of {samples} samples per period: they resolve at most {} \
-         (fewer than half the samples); take fewer harmonics or more samples",
+        "{} asked of {} per period: they resolve at most {} (fewer than half the samples); take fewer \
+         harmonics or more samples",
+        Count(*harmonics, "harmonic"),
+        Count(*samples, "sample"),
         samples.saturating_sub(1) / 2
     )]
     TooManyHarmonics {
@@ -208,9 +210,10 @@ pub enum DynamicsError {
     /// [`OdeConfig::max_steps`](super::OdeConfig::max_steps)) before the end time: the span
     /// asks for more steps than the budget allows at the step size the tolerances need.
     #[error(
-        "the integration made its budget of {steps} steps and reached only t = {} of {}: simulate a \
-         shorter span (on the command line, a smaller `--time`), or raise the budget \
-         (`OdeConfig::max_steps`) or loosen the tolerances",
+        "the integration made its budget of {} and reached only t = {} of {}: simulate a shorter span (on \
+         the command line, a smaller `--time`), or raise the budget (`OdeConfig::max_steps`) or loosen the \
+         tolerances",
+        Count(*steps, "step"),
         Number(*.t),
         Number(*.t_end)
     )]

@@ -105,6 +105,9 @@ fn too_many_harmonics_say_so_with_the_numbers() {
     assert!(text.contains("8 harmonics asked of 16 samples per period: they resolve at most 7"), "{text}");
     assert!(!text.contains("kinematics") && !text.contains("NaN"), "{text}");
     assert!(c.torque_harmonics(7).is_ok());
+    // One harmonic of one sample is one of each, not "1 harmonics asked of 1 samples".
+    let one = DynamicsError::TooManyHarmonics { harmonics: 1, samples: 1 }.to_string();
+    assert!(one.starts_with("1 harmonic asked of 1 sample per period: they resolve at most 0"), "{one}");
     assert!(matches!(c.shaking_harmonics(100), Err(DynamicsError::TooManyHarmonics { harmonics: 100, .. })));
     for harmonics in [usize::MAX, usize::MAX / 2 + 1] {
         assert!(matches!(c.torque_harmonics(harmonics), Err(DynamicsError::TooManyHarmonics { .. })));
@@ -376,6 +379,11 @@ fn a_span_beyond_the_step_budget_says_what_to_do() {
     for what in ["budget of 500 steps", " of 1000000000000:", "`--time`", "`OdeConfig::max_steps`"] {
         assert!(message.contains(what), "`{what}` missing: {message}");
     }
+    // A budget of one step is one, not "1 steps".
+    let cfg = OdeConfig::default().with_max_steps(1);
+    let err = dopri5(oscillator(1000.0), 0.0, [1.0, 0.0], 1e12, &cfg, |_, _| Ok(false)).unwrap_err();
+    assert!(matches!(err, DynamicsError::TooManySteps { steps: 1, .. }), "{err}");
+    assert!(err.to_string().contains("made its budget of 1 step and reached"), "{err}");
 }
 
 /// A derivative beyond 1e154 of its tolerance's scale overflowed the squares of the error norm:

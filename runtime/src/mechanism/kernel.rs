@@ -9,6 +9,7 @@ use crate::events::{BlockInfo, Location};
 use crate::kin::{Jac, Kin, Sens};
 use crate::kinds::QuantityKind;
 use crate::mechanism::{Mechanism, Sensitivities, given_position};
+use crate::number::Count;
 use crate::paths::config::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
 use crate::trig::InputTrig;
@@ -386,10 +387,10 @@ pub(crate) fn check_sizes<K: Kernel>(m: &K, what: &str, xs: &[&X<K>], qs: &[&Q<K
         return Ok(());
     }
     Err(Error::InvalidArgument(format!(
-        "{what} of `{}` needs {} inputs at each input point and {} unknowns in a guess",
+        "{what} of `{}` needs {} at each input point and {} in a guess",
         m.name(),
-        d.ni(),
-        d.n()
+        Count(d.ni(), "input"),
+        Count(d.n(), "unknown")
     )))
 }
 
@@ -445,7 +446,11 @@ impl<const N: usize, const NI: usize, const NO: usize, const NP: usize> SensStat
 /// The error of [`SensKernel::with_params`] given `got` values for the `want` parameters of
 /// mechanism `name` ([`SensKernel::check_param_count`]).
 fn wrong_param_count(got: usize, want: usize, name: &str) -> Error {
-    Error::InvalidArgument(format!("{got} parameter values for the {want} parameters of `{name}`"))
+    Error::InvalidArgument(format!(
+        "{} for the {} of `{name}`",
+        Count(got, "parameter value"),
+        Count(want, "parameter")
+    ))
 }
 
 /// A [`Kernel`] whose parameters can be varied, with the parameter sensitivities of its states:

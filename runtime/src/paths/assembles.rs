@@ -10,6 +10,7 @@ use crate::error::Error;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, Q, X, check_inputs_finite, check_sizes};
+use crate::number::Count;
 use crate::solvers::newton::NewtonConfig;
 use std::f64::consts::TAU;
 
@@ -114,7 +115,8 @@ pub fn assembly_near_of<K: Kernel>(m: &K, at: X<K>, samples: usize) -> Result<Op
     }
     if samples < 2 {
         return Err(Error::InvalidArgument(format!(
-            "assembly_near: {samples} samples asked for: the turn needs at least 2"
+            "assembly_near: {} asked for: the turn needs at least 2",
+            Count(samples, "sample")
         )));
     }
     crate::analysis::check_sample_count("samples of `assembly_near`", samples).map_err(Error::InvalidArgument)?;

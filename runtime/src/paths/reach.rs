@@ -8,6 +8,7 @@ use crate::error::{Error, Quantity};
 use crate::events::Event;
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, Kernel, KinOf, Q, X, check_inputs_finite, check_sizes};
+use crate::number::Count;
 
 /// The reachable stretch of the input from a starting value on one assembly mode, in input
 /// values, with the limit positions that end it (`None` where the end of the searched range is
@@ -74,7 +75,8 @@ pub fn reachable_of<K: Kernel>(
     check_sizes(m, "reachable", &[&at, &delta], &[&guess])?;
     if samples < 2 {
         return Err(Error::InvalidArgument(format!(
-            "reachable: {samples} samples a side asked for: a stretch needs at least 2 (its ends)"
+            "reachable: {} a side asked for: a stretch needs at least 2 (its ends)",
+            Count(samples, "sample")
         )));
     }
     crate::analysis::check_sample_count("samples a side of `reachable`", samples).map_err(Error::InvalidArgument)?;

@@ -3,7 +3,7 @@
 //! unknowns) is refused when it is built, with a message that names what is wrong.
 
 use crate::error::Error;
-use crate::number::Number;
+use crate::number::{Count, Number};
 use std::borrow::Cow;
 
 /// What is wrong with a synthesis problem or its search: a problem that is not well posed is
@@ -72,9 +72,11 @@ pub enum SynthesisError {
     /// The targets give fewer scalar equations than there are unknowns (design variables, free
     /// input values, placement): the solution is not determined.
     #[error(
-        "{residuals} equations from the targets for {variables} unknowns (design variables, free \
-         inputs, placement): give at least {variables} target values, fewer variables, or accept a \
-         family of designs with `Design::underdetermined()`"
+        "{} from the targets for {} (design variables, free inputs, placement): give at least {}, \
+         fewer variables, or accept a family of designs with `Design::underdetermined()`",
+        Count(*residuals, "equation"),
+        Count(*variables, "unknown"),
+        Count(*variables, "target value")
     )]
     TooFewTargets {
         /// Scalar equations (target components).

@@ -14,6 +14,7 @@ use crate::dims::Dims;
 use crate::kinds::QuantityKind;
 use crate::mechanism::Sensitivities;
 use crate::mechanism::kernel::{CompiledSens, Kernel, Q, SensKernel, X};
+use crate::number::Count;
 use crate::paths::config::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
 use std::borrow::Cow;
@@ -110,9 +111,9 @@ impl<K: SensKernel> ProblemOf<K> {
         }
         if task.weights.len() != task.channels.len() {
             return Err(SynthesisError::Mismatch(format!(
-                "{} weights for {} channels",
-                task.weights.len(),
-                task.channels.len()
+                "{} for {}",
+                Count(task.weights.len(), "weight"),
+                Count(task.channels.len(), "channel")
             )));
         }
         let mut channels = Vec::with_capacity(task.channels.len());
@@ -130,8 +131,8 @@ impl<K: SensKernel> ProblemOf<K> {
         for (k, row) in task.targets.iter().enumerate() {
             if row.len() != width {
                 return Err(SynthesisError::Mismatch(format!(
-                    "target {k} has {} values; the channels take {width}",
-                    row.len()
+                    "target {k} has {}; the channels take {width}",
+                    Count(row.len(), "value")
                 )));
             }
             if let Some(&v) = row.iter().find(|v| !v.is_finite()) {
@@ -271,7 +272,8 @@ impl<K: SensKernel> ProblemOf<K> {
     /// (e.g. from a design whose assembly mode at each target is known); one per target.
     pub fn with_guesses(mut self, guesses: Vec<<K::Dims as Dims>::Q>) -> Result<Self, SynthesisError> {
         if guesses.len() != self.targets() {
-            return Err(SynthesisError::Mismatch(format!("{} guesses for {} targets", guesses.len(), self.targets())));
+            let guesses = if guesses.len() == 1 { "1 guess".into() } else { format!("{} guesses", guesses.len()) };
+            return Err(SynthesisError::Mismatch(format!("{guesses} for {}", Count(self.targets(), "target"))));
         }
         guesses.iter().try_for_each(|g| self.check_guess(g))?;
         self.guess = Guess::Every(guesses);
@@ -282,7 +284,11 @@ impl<K: SensKernel> ProblemOf<K> {
     fn check_guess(&self, guess: &<K::Dims as Dims>::Q) -> Result<(), SynthesisError> {
         let (n, given) = (self.base.dims().n(), guess.as_ref().len());
         if given != n {
-            return Err(SynthesisError::Mismatch(format!("a guess of {given} values for {n} unknowns")));
+            return Err(SynthesisError::Mismatch(format!(
+                "a guess of {} for {}",
+                Count(given, "value"),
+                Count(n, "unknown")
+            )));
         }
         if guess.as_ref().iter().any(|v| !v.is_finite()) {
             return Err(SynthesisError::InvalidConfig("a guess is not finite".into()));

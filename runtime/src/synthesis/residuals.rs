@@ -9,6 +9,7 @@ use crate::analysis::ColumnIndex;
 use crate::dims::{Dims, KinState};
 use crate::error::Error;
 use crate::mechanism::kernel::{Q, SensKernel, SensState};
+use crate::number::Count;
 use std::f64::consts::TAU;
 
 /// Residuals and Jacobian at one point of the search, with the positions solved at every target
@@ -93,7 +94,8 @@ impl<K: SensKernel> ProblemOf<K> {
     /// `z` has one finite value per unknown of the search.
     pub(crate) fn check_point(&self, z: &[f64]) -> Result<(), SynthesisError> {
         if z.len() != self.dims() {
-            return Err(SynthesisError::Mismatch(format!("{} values for {} unknowns", z.len(), self.dims())));
+            let (given, unknowns) = (Count(z.len(), "value"), Count(self.dims(), "unknown"));
+            return Err(SynthesisError::Mismatch(format!("{given} for {unknowns}")));
         }
         if let Some(v) = z.iter().find(|v| !v.is_finite()) {
             return Err(SynthesisError::InvalidConfig(format!("an unknown of the search is not finite ({v})")));

@@ -9,6 +9,7 @@ use crate::analysis::{ColumnIndex, ColumnOf};
 use crate::dims::Dims;
 use crate::kinds::QuantityKind;
 use crate::mechanism::kernel::Kernel;
+use crate::number::Count;
 
 /// A target channel resolved to the mechanism's columns.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -85,14 +86,19 @@ pub(crate) fn resolve_timing<D: Dims>(d: D, timing: &Timing, targets: usize) -> 
         )),
         Timing::Prescribed(rows) => {
             if rows.len() != targets {
-                return Err(SynthesisError::Mismatch(format!("{} input values for {targets} targets", rows.len())));
+                return Err(SynthesisError::Mismatch(format!(
+                    "{} of input values for {}",
+                    Count(rows.len(), "row"),
+                    Count(targets, "target")
+                )));
             }
             let mut out = Vec::with_capacity(targets);
             for (k, row) in rows.iter().enumerate() {
                 if row.len() != ni {
                     return Err(SynthesisError::Mismatch(format!(
-                        "target {k} has {} input values; the mechanism has {ni}",
-                        row.len()
+                        "target {k} has {}; the mechanism has {}",
+                        Count(row.len(), "input value"),
+                        Count(ni, "input")
                     )));
                 }
                 if let Some(&v) = row.iter().find(|v| !v.is_finite()) {

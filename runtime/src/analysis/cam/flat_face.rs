@@ -4,7 +4,7 @@
 use super::FollowerSample;
 use super::plane::{apply, cross, dot, largest, length_unit, norm, per_unit, quarter, rotate, scale, sub, unit};
 use crate::error::Error;
-use crate::number::Number;
+use crate::number::{Count, Number};
 use std::f64::consts::FRAC_PI_2;
 
 /// Where a flat-faced follower's face is, and how the follower moves: along a guide or about a
@@ -94,9 +94,9 @@ impl FlatFaceProfile {
         let bad = self.not_convex();
         match (bad.first(), bad.last()) {
             (Some(&a), Some(&b)) => Err(Error::InvalidArgument(format!(
-                "flat_face_profile: the profile is not convex at {} samples (from sample {a} to sample {b}; radius of \
+                "flat_face_profile: the profile is not convex at {} (from sample {a} to sample {b}; radius of \
                  curvature {} at sample {a}): a flat face cannot follow the law there",
-                bad.len(),
+                Count(bad.len(), "sample"),
                 Number(self.radius[a])
             ))),
             _ => Ok(()),

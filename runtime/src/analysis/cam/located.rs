@@ -5,6 +5,7 @@ use super::plane::{apply, length_unit, norm, per_unit, quarter, rotate, scale, s
 use super::{FlatFace, FollowerSample, cam_profile, flat_face_profile};
 use crate::analysis::extremes::maximize;
 use crate::error::Error;
+use crate::number::Count;
 
 /// The agreement of an interval's jets (a fraction of its change) below which it counts as
 /// resolved: a smooth law sampled every degree agrees to some 1e-5, a law whose feature is
@@ -164,7 +165,7 @@ fn located<const K: usize>(
 ) -> Result<[Located; K], Error> {
     let bad = |m: String| Err(Error::InvalidArgument(format!("cam extremes: {m}")));
     if inputs.len() != samples.len() || samples.is_empty() {
-        return bad(format!("{} inputs for {} samples", inputs.len(), samples.len()));
+        return bad(format!("{} for {}", Count(inputs.len(), "input"), Count(samples.len(), "sample")));
     }
     if let Some(w) = inputs.windows(2).find(|w| w[0].partial_cmp(&w[1]) != Some(std::cmp::Ordering::Less)) {
         return bad(format!("the inputs must increase (found {} then {})", w[0], w[1]));

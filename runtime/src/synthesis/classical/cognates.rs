@@ -22,6 +22,7 @@ use super::error::{ClassicalError, finite};
 use super::four_bar::FourBar;
 use super::position::angle_difference;
 use crate::metrics::FourBarLinks;
+use crate::number::Count;
 use nalgebra::Complex;
 use std::f64::consts::PI;
 
@@ -130,9 +131,9 @@ pub fn cognates(f: &FourBar) -> Result<[FourBar; 2], ClassicalError> {
         return Err(ClassicalError::BadRange {
             what: "four-bar angles",
             why: format!(
-                "{n} input, {} coupler and {} output angles: give one of each per precision point or pose",
+                "{n} input, {} coupler and {}: give one of each per precision point or pose",
                 f.couplers.len(),
-                f.outputs.len()
+                Count(f.outputs.len(), "output angle")
             ),
         });
     }
