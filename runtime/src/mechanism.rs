@@ -432,6 +432,29 @@ where
     Some(Error::NonFinite { what, name, value, at: Box::new(location::<M, N, NI, NO>(x, None)) })
 }
 
+/// `Ok` where every value of the caller's `guess` is finite; otherwise the error naming the first
+/// value not finite ([`bad_values`]: a parameter or an input before it), as a solve by Newton,
+/// which reads every guess, names it. A closed form reads only the guesses that pick its branch
+/// and turn, and a linear block none: a NaN guess of an unknown the solve does not read was
+/// accepted, where a Newton block (`#[kinloop(newton)]`) that reads it refused it. Made by the
+/// named point solves and by a compiled kernel's `kinematics` and `positions` (a sweep's first
+/// state, a trace's solves), never by a sweep's steps (`step_into`), whose guesses are its own
+/// states.
+#[inline]
+pub(crate) fn guess_checked<M, const N: usize, const NI: usize, const NO: usize>(
+    m: &M,
+    x: &[f64; NI],
+    guess: &[f64; N],
+) -> Result<(), Error>
+where
+    M: Mechanism<N, NI, NO> + ?Sized,
+{
+    if guess.iter().all(|g| g.is_finite()) {
+        return Ok(());
+    }
+    bad_values::<M, N, NI, NO>(m, x, Some(guess)).map_or(Ok(()), Err)
+}
+
 /// The error of a step at a position `q` the caller gave (`kinematics_at`), `e` the kernel's:
 /// where an unknown of `q` is not finite, that unknown named ([`Quantity::Position`]), which the
 /// kernel's own error (a singular Jacobian, an equation not finite) would not say. A parameter

@@ -11,7 +11,7 @@ use crate::configured::Configured;
 use crate::error::Error;
 use crate::kin::{Kin, Sens};
 use crate::mechanism::kernel::Compiled;
-use crate::mechanism::{Mechanism, Sensitivities, given_position};
+use crate::mechanism::{Mechanism, Sensitivities, given_position, guess_checked};
 use crate::paths::assembles::{ASSEMBLY_SAMPLES, Assembly, assembly_near};
 use crate::paths::config::SweepConfig;
 use crate::paths::modes::assembly_modes;
@@ -82,7 +82,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         // The generated `position_flat` solves a mechanism outside the closed forms' sizes
         // again itself (`rescue_position`, see `extreme_scale`).
         self.check_param_angles(cfg)?;
-        let (q, report) = self.position_flat(&input.into().into(), &(*guess).into(), cfg)?;
+        let (x, guess) = (input.into().into(), (*guess).into());
+        guess_checked(self, &x, &guess)?;
+        let (q, report) = self.position_flat(&x, &guess, cfg)?;
         Ok((q.into(), report))
     }
 
@@ -100,7 +102,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         cfg: &NewtonConfig,
     ) -> Result<Self::State, Error> {
         self.check_param_angles(cfg)?;
-        self.kinematics_flat(&input.into().into(), &(*guess).into(), cfg).map(Self::State::from)
+        let (x, guess) = (input.into().into(), (*guess).into());
+        guess_checked(self, &x, &guess)?;
+        self.kinematics_flat(&x, &guess, cfg).map(Self::State::from)
     }
 
     /// Analogs and outputs at a position the caller already solved.
@@ -117,7 +121,9 @@ pub trait Named<const N: usize, const NI: usize, const NO: usize>: Mechanism<N, 
         let x: [f64; NI] = input.into().into();
         let cfg = self.solver_config().newton;
         self.check_param_angles(&cfg)?;
-        self.kinematics_flat(&x, &self.guess_flat(&x), &cfg).map(Self::State::from)
+        let guess = self.guess_flat(&x);
+        guess_checked(self, &x, &guess)?;
+        self.kinematics_flat(&x, &guess, &cfg).map(Self::State::from)
     }
 
     /// A lazy sweep of `samples` equally spaced inputs from `from` to `to` (both included) that
@@ -252,7 +258,9 @@ pub trait NamedSensitivities<const N: usize, const NI: usize, const NO: usize, c
         input: impl Into<Self::Inputs>,
         guess: &Self::Unknowns,
     ) -> Result<(Self::State, Self::Sens), Error> {
-        let (k, s) = self.sensitivities_flat(&input.into().into(), &(*guess).into(), &self.solver_config().newton)?;
+        let (x, guess) = (input.into().into(), (*guess).into());
+        guess_checked(self, &x, &guess)?;
+        let (k, s) = self.sensitivities_flat(&x, &guess, &self.solver_config().newton)?;
         Ok((k.into(), s.into()))
     }
 

@@ -223,3 +223,67 @@ fn levenberg_marquardt_stops_at_a_tolerance_in_the_residuals_unit() {
         }
     }
 }
+
+kinloop::mechanism! {
+    /// A slider-crank and a lift on its slider, compiled: the rod angle's closed form reads its
+    /// guess (the branch), and the slider's and the lift's linear solves read none.
+    pub struct Lifted {
+        params r, l, h;
+        input phi;
+        unknowns beta = 0.3, s = 3, y = 1;
+        loop rod: r @ phi + l @ beta == (s, 0);
+        eq lift: y == h * s;
+    }
+}
+
+kinloop::mechanism! {
+    /// `Lifted` solved by dense Newton, which reads every guess.
+    #[kinloop(newton)]
+    pub struct LiftedNewton {
+        params r, l, h;
+        input phi;
+        unknowns beta = 0.3, s = 3, y = 1;
+        loop rod: r @ phi + l @ beta == (s, 0);
+        eq lift: y == h * s;
+    }
+}
+
+/// A guess not finite is refused, naming the unknown, whether or not the solve reads it, by the
+/// point solves and by a sweep's and a trace's start, as a Newton block that reads it refuses
+/// it. A NaN guess of the slider or the lift (solved linearly, from no guess) was accepted, by
+/// the compiled mechanism and by its Newton twin, whose blocks are linear there too.
+#[test]
+fn a_guess_not_finite_is_refused_whether_or_not_the_solve_reads_it() {
+    let (m, twin) = (Lifted { r: 1.0, l: 3.0, h: 0.5 }, LiftedNewton { r: 1.0, l: 3.0, h: 0.5 });
+    let good = m.solve(0.4).unwrap().q;
+    let guesses = |bad: f64| {
+        let mut all = Vec::new();
+        for u in ["beta", "s", "y"] {
+            let mut g = good;
+            *match u {
+                "beta" => &mut g.beta,
+                "s" => &mut g.s,
+                _ => &mut g.y,
+            } = bad;
+            all.push((u, g));
+        }
+        all
+    };
+    let refused = |r: Result<(), Error>, u: &str, how: &str| match r {
+        Err(Error::NonFinite { what: Quantity::Guess, name, .. }) if name == u => {}
+        other => panic!("{how}, guess of `{u}`: {other:?}"),
+    };
+    for bad in [f64::NAN, f64::INFINITY] {
+        for (u, g) in guesses(bad) {
+            let twin_g = LiftedNewtonUnknowns { beta: g.beta, s: g.s, y: g.y };
+            refused(m.kinematics(0.4, &g).map(drop), u, "kinematics");
+            refused(twin.kinematics(0.4, &twin_g).map(drop), u, "the twin's kinematics");
+            refused(m.position(0.4, &g).map(drop), u, "position");
+            refused(m.sweep(0.4, 0.6, 3, &g).unwrap().next().unwrap().map(drop), u, "a sweep's first state");
+            refused(m.trace_curve(0.4, 0.6, &g, &kinloop::TraceConfig::default()).map(drop), u, "a trace");
+        }
+    }
+    // A finite guess far from the solution still solves (the linear solves read none of it).
+    let far = LiftedUnknowns { s: 1e9, y: -1e9, ..good };
+    assert_eq!(m.kinematics(0.4, &far).unwrap().q.y, good.y);
+}

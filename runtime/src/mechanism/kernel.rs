@@ -8,7 +8,7 @@ use crate::error::{Error, Quantity};
 use crate::events::{BlockInfo, Location};
 use crate::kin::{Jac, Kin, Sens};
 use crate::kinds::QuantityKind;
-use crate::mechanism::{Mechanism, Sensitivities, given_position};
+use crate::mechanism::{Mechanism, Sensitivities, given_position, guess_checked};
 use crate::number::Count;
 use crate::paths::config::SweepConfig;
 use crate::solvers::newton::NewtonConfig;
@@ -242,9 +242,11 @@ macro_rules! compiled_kernel_body {
         }
         #[inline(always)]
         fn kinematics(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<Kin<N, NI, NO>, Error> {
+            guess_checked::<M, N, NI, NO>(&self.0, x, guess)?;
             self.0.kinematics_flat(x, guess, cfg)
         }
         fn positions(&self, x: &[f64; NI], guess: &[f64; N], cfg: &NewtonConfig) -> Result<[f64; N], Error> {
+            guess_checked::<M, N, NI, NO>(&self.0, x, guess)?;
             self.0.position_flat(x, guess, cfg).map(|(q, _)| q)
         }
         #[inline(always)]
