@@ -207,7 +207,10 @@ pub enum Error {
         start_cause(*pivot_ratio, *singular_pivot)
     )]
     SingularStart {
-        /// The first sample's smallest pivot ratio.
+        /// The first sample's smallest pivot ratio ([`Health::min_pivot`](crate::Health), of the
+        /// analogs' factorisations); where the first state's point solve finds it singular, that
+        /// of the analogs at its positions solved alone (0 where those are not determined
+        /// either), not the point solve's own measure.
         pivot_ratio: f64,
         /// The configured `SweepConfig::singular_pivot`.
         singular_pivot: f64,

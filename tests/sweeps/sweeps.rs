@@ -506,6 +506,44 @@ fn a_sweep_from_a_limit_position_says_it_starts_at_one() {
     assert!(message.contains(&format!("phi = {at}")) && message.contains("trace_curve"), "{message}");
 }
 
+/// The pivot ratio a singular start reports is the one `SweepConfig::singular_pivot` is
+/// compared with, `Health::min_pivot`'s (of the analogs' factorisations), also where the first
+/// state's point solve finds it singular: there the analogs at the positions solved alone, the
+/// ratio of the block whose factorisation fails (`kinematics_at`'s `Singular`). The point
+/// solve's own measure was reported and compared with `singular_pivot`: at the slider-crank's
+/// limit position where its sweep stopped, its closed form's 0, "below `singular_pivot`", with
+/// every `singular_pivot`.
+#[test]
+fn a_singular_start_reports_the_pivot_ratio_singular_pivot_is_compared_with() {
+    use kinloop::Named;
+    let slider = kinloop_fixtures::SliderCrank { r: 2.0, l: 1.5, e: 0.3 };
+    let g = slider.position(0.0, &slider.guess(0.0)).unwrap().0;
+    let mut sweep = slider.sweep(0.0, 3.0, 91, &g).unwrap();
+    assert!(matches!(sweep.by_ref().find_map(Result::err), Some(Error::SweepStopped { .. })));
+    let event = sweep.events()[0].clone();
+    let (at, q) = (event.x[0], <[f64; 2]>::try_from(&event.q[..]).unwrap().into());
+    // The point solve finds the start singular; the analogs' ratio at its positions is had alone.
+    let point = slider.kinematics(at, &q);
+    assert!(matches!(point, Err(Error::Singular { .. })), "{point:?}");
+    let solved = slider.position(at, &q).unwrap().0;
+    let analogs = match slider.kinematics_at(at, &solved) {
+        Ok(k) => k.health.min_pivot,
+        Err(Error::Singular { pivot_ratio, .. }) => pivot_ratio,
+        Err(e) => panic!("{e:?}"),
+    };
+    // With the default `singular_pivot` and with one below every ratio: the same measure, and
+    // the message says it is below `singular_pivot` only where it is.
+    for singular_pivot in [SweepConfig::default().singular_pivot, 0.0] {
+        let cfg = SweepConfig::default().with_singular_pivot(singular_pivot);
+        let e = slider.with_config(cfg).unwrap().sweep(at, 0.0, 5, &q).unwrap().find_map(Result::err);
+        let Some(Error::SingularStart { pivot_ratio, .. }) = e else { panic!("{e:?}") };
+        assert_eq!(pivot_ratio, analogs, "singular_pivot {singular_pivot}: {e:?}");
+        let message = e.unwrap().to_string();
+        let below = message.contains("below `SweepConfig::singular_pivot`");
+        assert_eq!(below, pivot_ratio < singular_pivot, "singular_pivot {singular_pivot}: {message}");
+    }
+}
+
 /// A sweep from the limit position where a sweep stopped (its event's input and positions)
 /// says it starts at one, with what to do instead, as from the end of a reachable range: also
 /// where the first state does not solve even with the rounding's analogs (the slider-crank's

@@ -73,6 +73,7 @@ use crate::kin::{DetSigns, Kin};
 use crate::mechanism::Mechanism;
 use crate::mechanism::kernel::{Compiled, D, Kernel, KinOf, Q, X, check_sizes, is_angle};
 use crate::paths::kink;
+use crate::solvers::newton::NewtonConfig;
 use crate::table::Table;
 use crate::trig::Rotating;
 use std::marker::PhantomData;
@@ -735,15 +736,44 @@ where
                 self.next = 1;
                 Ok(())
             }
-            Err(e) => Err(self.stopped(match e {
-                // Where a sweep stopped (a limit position located to the rounding) the pivot
-                // ratio is below even the point solve's tolerance: the same start as the end of
-                // a reachable range, said as such (see `diagnose`).
-                Error::Singular { pivot_ratio, at, .. } => {
-                    Error::SingularStart { pivot_ratio, singular_pivot: self.cfg.singular_pivot, at }
-                }
-                e => e,
-            })),
+            Err(e) => {
+                let e = match e {
+                    // Where a sweep stopped (a limit position located to the rounding) the pivot
+                    // ratio is below even the point solve's tolerance: the same start as the end
+                    // of a reachable range, said as such (see `diagnose`), with the pivot ratio
+                    // of the analogs there, which `singular_pivot` is compared with.
+                    Error::Singular { at, .. } => {
+                        let pivot_ratio = self.start_pivot(&newton);
+                        Error::SingularStart { pivot_ratio, singular_pivot: self.cfg.singular_pivot, at }
+                    }
+                    e => e,
+                };
+                Err(self.stopped(e))
+            }
+        }
+    }
+
+    /// The smallest pivot ratio of the analogs' factorisations ([`Health::min_pivot`](crate::Health),
+    /// the measure `SweepConfig::singular_pivot` is compared with) at the first sample, where its
+    /// point solve found the position singular: its positions solved alone, and the analogs
+    /// there, or the ratio of the block their factorisation found singular. The point solve's
+    /// own ratio is another measure (Newton's factorisations scale their rows by the rows'
+    /// magnitudes, a closed form measures its lever), which no `singular_pivot` is compared
+    /// with: a slider-crank started at its limit position reported 0 there, "below
+    /// `singular_pivot`", whatever `singular_pivot` was. Both are taken with a `singular_tol` of
+    /// 0, which judges no pivot singular but a zero one. 0 where the positions are not solved
+    /// alone either (not determined there: a rhombus four-bar folded flat, whose coupler closes
+    /// the loop at every angle), the Jacobian singular in every measure. Out of the steps' path:
+    /// once, at a start that fails.
+    #[cold]
+    #[inline(never)]
+    fn start_pivot(&self, newton: &NewtonConfig) -> f64 {
+        let cfg = newton.with_singular_tol(0.0);
+        let Ok(q) = self.m.positions(&self.path.from, &self.guess, &cfg) else { return 0.0 };
+        match self.m.kinematics_at(&self.path.from, &q, &cfg) {
+            Ok(k) => k.health().min_pivot,
+            Err(Error::Singular { pivot_ratio, .. }) => pivot_ratio,
+            Err(_) => 0.0,
         }
     }
 
