@@ -29,7 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
 
-    let states: Vec<_> = m.sweep(0.0, TAU, 721, &m.guess(0.0))?.collect::<Result<_, _>>()?;
+    let states = turn(&m)?;
     println!(
         "\n{:>6} {:>10} {:>10} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9}",
         "phi", "th1", "th2", "psi1", "psi2", "dth1", "dth2", "dpsi1", "dpsi2"
@@ -66,6 +66,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = draw(&m, &states)?;
     println!("\nwrote angles_and_analogs.svg, joint_paths.svg to {}", dir.display());
     Ok(())
+}
+
+/// The states over a crank turn from the declared assembly mode, 0.5 degrees apart (721, both
+/// ends included): the example prints every 60th.
+pub fn turn(m: &ClassFour) -> Result<Vec<ClassFourState>, kinloop::Error> {
+    m.sweep(0.0, TAU, 721, &m.guess(0.0))?.collect()
 }
 
 /// Lengths are in units of the crank OA.
