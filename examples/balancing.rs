@@ -49,11 +49,37 @@ struct Curves {
     residual: Vec<(f64, f64)>,
 }
 
-/// Prints a design's harmonics and D; returns its curves over the turn.
-fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error>> {
+/// A design's centre of mass over a turn, as the example prints it.
+pub struct Analysed {
+    /// The amplitudes of the harmonics 1 to 6 of X_c.
+    pub amplitudes: [f64; 6],
+    /// The residual unbalance D after the first harmonic.
+    pub d: f64,
+    /// The crank angle (radians) where the residual is largest.
+    pub at: f64,
+    curves: Curves,
+}
+
+/// A design's harmonics and D, and its curves over the turn.
+pub fn analyse(m: &Balance) -> Result<Analysed, Box<dyn std::error::Error>> {
     let turn = m.sampled(0.0, TAU, SAMPLES + 1, &m.guess(0.0))?;
     let f = turn.fourier(Balance::COL.xc, 6)?;
     let r = turn.unbalance(Balance::COL.xc, 1)?;
+    let jets = turn.jets(Balance::COL.xc)?;
+    Ok(Analysed {
+        amplitudes: std::array::from_fn(|k| f.amplitude(k + 1)),
+        d: r.max_abs,
+        at: r.at.x,
+        curves: Curves {
+            x_c: jets.iter().map(|j| (j.x, j.value)).collect(),
+            residual: jets.iter().map(|j| (j.x, j.value - r.fourier.eval_upto(1, j.x).0)).collect(),
+        },
+    })
+}
+
+/// Prints a design's harmonics and D; returns its curves over the turn.
+fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error>> {
+    let a = analyse(m)?;
     println!(
         "{name}: rho = {:.6}, gamma_b = {:.6}, k_b = {:.6}, delta = {:.6}°",
         m.rho,
@@ -61,14 +87,10 @@ fn describe(name: &str, m: &Balance) -> Result<Curves, Box<dyn std::error::Error
         m.k_b,
         m.delta.to_degrees()
     );
-    let amps: Vec<String> = (1..=6).map(|k| format!("{:.3e}", f.amplitude(k))).collect();
+    let amps: Vec<String> = a.amplitudes.iter().map(|v| format!("{v:.3e}")).collect();
     println!("  harmonic amplitudes of X_c (1..6): {}", amps.join(", "));
-    println!("  residual unbalance D = {:.6e} at alpha = {:.3}°", r.max_abs, r.at.x.to_degrees());
-    let jets = turn.jets(Balance::COL.xc)?;
-    Ok(Curves {
-        x_c: jets.iter().map(|j| (j.x, j.value)).collect(),
-        residual: jets.iter().map(|j| (j.x, j.value - r.fourier.eval_upto(1, j.x).0)).collect(),
-    })
+    println!("  residual unbalance D = {:.6e} at alpha = {:.3}°", a.d, a.at.to_degrees());
+    Ok(a.curves)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
