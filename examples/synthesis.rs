@@ -23,7 +23,7 @@
 //! Run with `cargo run --release -p kinloop-examples --example synthesis`. (With the `kinloop`
 //! feature `rayon`, `Search::par_run` runs the starts on all cores, with the same report.)
 
-use kinloop::analysis::optimize::LevenbergMarquardt;
+use kinloop::analysis::optimize::{LevenbergMarquardt, Minimum};
 use kinloop::metrics::{FourBarLinks, grashof};
 use kinloop::synthesis::classical::{FourBar, cognates};
 use kinloop::synthesis::{
@@ -271,13 +271,13 @@ fn function_generation() -> Result<(), Box<dyn std::error::Error>> {
 
 /// The rhombic drive with its displacer arm `r_b` and the angle `gamma` between the arms set
 /// to `x`.
-fn rhombic(x: &[f64; 2]) -> Rhombic {
+pub fn rhombic(x: &[f64; 2]) -> Rhombic {
     Rhombic { r_b: x[0], gamma: x[1], ..Rhombic::default() }
 }
 
 /// Phase shift (crank angle from the piston's outer dead centre to the displacer's, in
 /// (-pi, pi]) and stroke ratio (displacer over piston), with their gradients in `r_b`, `gamma`.
-fn characteristics(x: &[f64; 2]) -> Result<([f64; 2], [[f64; 2]; 2]), Error> {
+pub fn characteristics(x: &[f64; 2]) -> Result<([f64; 2], [[f64; 2]; 2]), Error> {
     let m = rhombic(x);
     let turn = m.sampled(0.0, 2.0 * PI, 73, &m.guess(0.0))?;
     let ext = |col, which| turn.extremum_with_gradient(col, which);
@@ -297,17 +297,26 @@ fn characteristics(x: &[f64; 2]) -> Result<([f64; 2], [[f64; 2]; 2]), Error> {
     Ok(([phase, s_f / s_c], jac))
 }
 
-fn phase_shift() -> Result<(), Box<dyn std::error::Error>> {
-    let start = [1.2, 0.7];
-    let ([phase0, ratio0], _) = characteristics(&start)?;
+/// The start's phase shift and stroke ratio, the target (a phase shift 20 degrees less, a stroke
+/// ratio of 1.5), and the Levenberg–Marquardt minimum of the misses.
+pub fn phase_shift_design() -> Result<([f64; 2], [f64; 2], Minimum<2>), Error> {
+    let ([phase0, ratio0], _) = characteristics(&START)?;
     let target = [phase0 - 20f64.to_radians(), 1.5];
-    println!("3. Rhombic drive: phase shift 20 degrees less than the start's, stroke ratio 1.5");
-    println!("   start r_b = 1.2, gamma = 0.7: phase shift {:.4} deg, stroke ratio {ratio0:.6}", to_deg(phase0));
     let residuals = |x: &[f64; 2]| -> Result<([f64; 2], [[f64; 2]; 2]), Error> {
         let (v, j) = characteristics(x)?;
         Ok(([v[0] - target[0], v[1] - target[1]], j))
     };
-    let lm = LevenbergMarquardt::default().with_tol(1e-10).minimize(residuals, start)?;
+    let lm = LevenbergMarquardt::default().with_tol(1e-10).minimize(residuals, START)?;
+    Ok(([phase0, ratio0], target, lm))
+}
+
+/// The rhombic drive's start: `r_b = 1.2`, `gamma = 0.7`.
+pub const START: [f64; 2] = [1.2, 0.7];
+
+fn phase_shift() -> Result<(), Box<dyn std::error::Error>> {
+    let ([phase0, ratio0], _, lm) = phase_shift_design()?;
+    println!("3. Rhombic drive: phase shift 20 degrees less than the start's, stroke ratio 1.5");
+    println!("   start r_b = 1.2, gamma = 0.7: phase shift {:.4} deg, stroke ratio {ratio0:.6}", to_deg(phase0));
     let ([phase, ratio], _) = characteristics(&lm.x)?;
     println!(
         "   r_b = {:.9}, gamma = {:.9}: phase shift {:.6} deg, ratio {ratio:.9}; |r| = {:.1e} after {} evaluations",
