@@ -93,16 +93,24 @@ fn index(names: &[&str], name: &str) -> usize {
     names.iter().position(|n| *n == name).expect("a declared name")
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// The hot engine (900 K, mean pressure 1 MPa) and its inverse dynamics over a turn at the
+/// constant speed `omega`, at 3600 crank angles (the example prints every 300th).
+pub fn hot_cycle(omega: f64) -> Result<(StirlingEngine, Cycle), Box<dyn std::error::Error>> {
     let drive = with_gas(engine(), 900.0, 1.0e6)?;
     let hot = drive.mass_model()?;
-    let omega = 1500.0 * TAU / 60.0;
-    let guess = drive.guess_flat(&[0.0]);
     let cycle = InverseCycle::new(&drive, &hot, SpeedLaw::Constant(omega))
         .samples(3600)
-        .guess(guess)
+        .guess(drive.guess_flat(&[0.0]))
         .about([0.0, drive.e_p])
         .run()?;
+    Ok((drive, cycle))
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let omega = 1500.0 * TAU / 60.0;
+    let (drive, cycle) = hot_cycle(omega)?;
+    let hot = drive.mass_model()?;
+    let guess = drive.guess_flat(&[0.0]);
     print_cycle(&cycle, omega)?;
 
     let fw = cycle.flywheel(1.0 / 50.0)?;
