@@ -66,68 +66,50 @@ fn same_pivot(p: f64, at_one: f64) -> bool {
     (p - at_one).abs() <= 1e-13 * at_one
 }
 
+/// At every size of [`SIZES`], the mechanism `$at(k)` solved from `$guess` at the input 0.5 has
+/// the smallest pivot ratio of size 1 (which is above `$floor`: no singular position near), and
+/// its sweep to 0.6 completes.
+macro_rules! alike_in_every_unit {
+    ($at:expr, $guess:expr, $floor:expr) => {{
+        let (at, guess) = ($at, $guess);
+        let one = at(1.0).kinematics(0.5, &guess).expect("assembles at size 1").health.min_pivot;
+        assert!(one > $floor, "a singular position near: {one:e}");
+        for k in SIZES {
+            let m = at(k);
+            let pivot = m.kinematics(0.5, &guess).expect("assembles at every size").health.min_pivot;
+            assert!(same_pivot(pivot, one), "{k:e}: {pivot:e}");
+            let r = m.sweep(0.5, 0.6, 11, &guess).expect("a sweep").run();
+            assert!(r.is_completed(), "{k:e}: {:?}", r.stop);
+        }
+    }};
+}
+
 #[test]
 fn a_rocker_read_by_a_gear_is_as_far_from_singular_in_every_unit() {
     let at = |k: f64| GearedRocker { a: k, b: 3.5 * k, c: 3.0 * k, d: 4.0 * k };
     let guess = GearedRockerUnknowns { beta: 0.5, gamma: 1.5, th3: 3.0 };
-    let one = at(1.0).kinematics(0.5, &guess).expect("assembles at size 1");
-    assert!(one.health.min_pivot > 0.1, "no singular position near: {:e}", one.health.min_pivot);
+    alike_in_every_unit!(at, guess, 0.1);
+    // The angles themselves were right at every size before as now.
+    let gamma = at(1.0).kinematics(0.6, &guess).unwrap().q.gamma;
     for k in SIZES {
-        let m = at(k);
-        let s = m.kinematics(0.5, &guess).expect("assembles at every size");
-        assert!(same_pivot(s.health.min_pivot, one.health.min_pivot), "{k:e}: {:e}", s.health.min_pivot);
-        let r = m.sweep(0.5, 0.6, 11, &guess).expect("a sweep").run();
-        assert!(r.is_completed(), "{k:e}: {:?}", r.stop);
-        assert!((r.states[10].q.gamma - at(1.0).kinematics(0.6, &guess).unwrap().q.gamma).abs() < 1e-14);
+        assert!((at(k).kinematics(0.6, &guess).unwrap().q.gamma - gamma).abs() < 1e-14, "{k:e}");
     }
 }
 
 #[test]
 fn a_loop_and_a_gear_in_one_block_are_as_far_from_singular_in_every_unit() {
     let at = |k: f64| GearedFiveBar { a: k, b: 2.5 * k, c: 2.2 * k, d: 1.5 * k, e: 1.2 * k };
-    let guess = GearedFiveBarUnknowns { phi2: 1.0, th2: 0.8, phi3: 1.6 };
-    let one = at(1.0).kinematics(0.5, &guess).expect("assembles at size 1");
-    assert!(one.health.min_pivot > 0.1, "no singular position near: {:e}", one.health.min_pivot);
-    for k in SIZES {
-        let m = at(k);
-        let s = m.kinematics(0.5, &guess).expect("assembles at every size");
-        assert!(same_pivot(s.health.min_pivot, one.health.min_pivot), "{k:e}: {:e}", s.health.min_pivot);
-        let r = m.sweep(0.5, 0.6, 11, &guess).expect("a sweep").run();
-        assert!(r.is_completed(), "{k:e}: {:?}", r.stop);
-    }
+    alike_in_every_unit!(at, GearedFiveBarUnknowns { phi2: 1.0, th2: 0.8, phi3: 1.6 }, 0.1);
 }
 
 #[test]
 fn a_sparse_block_of_loops_and_a_gear_is_as_far_from_singular_in_every_unit() {
     let at = |k: f64| GearedRing { a: k, b: 3.0 * k, c: 2.5 * k, d: 3.2 * k };
-    let guess = GearedRingUnknowns {
-        u0: 0.6,
-        v0: 1.9,
-        u1: 0.6,
-        v1: 1.9,
-        u2: 0.6,
-        v2: 1.9,
-        u3: 0.6,
-        v3: 1.9,
-        u4: 0.6,
-        v4: 1.9,
-        u5: 0.6,
-        v5: 1.9,
-        u6: 0.6,
-        v6: 1.9,
-        u7: 0.6,
-        v7: 1.9,
-        w: 0.95,
-    };
-    let one = at(1.0).kinematics(0.5, &guess).expect("assembles at size 1");
-    assert!(one.health.min_pivot > 0.01, "no singular position near: {:e}", one.health.min_pivot);
-    for k in SIZES {
-        let m = at(k);
-        let s = m.kinematics(0.5, &guess).expect("assembles at every size");
-        assert!(same_pivot(s.health.min_pivot, one.health.min_pivot), "{k:e}: {:e}", s.health.min_pivot);
-        let r = m.sweep(0.5, 0.6, 11, &guess).expect("a sweep").run();
-        assert!(r.is_completed(), "{k:e}: {:?}", r.stop);
-    }
+    // Every coupler at 0.6 and rocker at 1.9, the gear's angle half the last rocker's.
+    let mut guess = [0.6, 1.9].repeat(8);
+    guess.push(0.95);
+    let guess = GearedRingUnknowns::from(<[f64; 17]>::try_from(guess).expect("17 unknowns"));
+    alike_in_every_unit!(at, guess, 0.01);
 }
 
 /// A non-Grashof geared rocker swung to its limit positions: the sweep stops at the same one,
