@@ -34,8 +34,8 @@ use crate::graph::dag::{Graph, NodeId};
 /// Weighs the entries of `bp`'s column magnitudes that lie in rows of another unit than the
 /// block's own (`power[e]`: equation `e`'s power of length, `None` where not inferred, which is
 /// never weighed) into the block's unit, in place, or gives a block of rows of several units its
-/// row scales (see the module documentation). `jac_full` holds the rows of the full Jacobian, `residuals` every
-/// equation's residual.
+/// row scales (see the module documentation). `jac_full` holds the rows of the full Jacobian,
+/// `residuals` every equation's residual.
 pub fn weigh(
     g: &mut Graph,
     mags: &mut Magnitudes,
