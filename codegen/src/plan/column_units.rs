@@ -74,8 +74,8 @@ pub fn weigh(
 
 /// Whether `bp` has rows of more than one unit, each inferred.
 fn mixed(bp: &BlockPlan, power: &[Option<i32>]) -> bool {
-    let first = power[bp.equations[0]];
-    bp.equations.iter().all(|&e| power[e].is_some()) && bp.equations.iter().any(|&e| power[e] != first)
+    let Some(&first) = bp.equations.first() else { return false };
+    bp.equations.iter().all(|&e| power[e].is_some()) && bp.equations.iter().any(|&e| power[e] != power[first])
 }
 
 /// A block of rows of several units: each row divided by its magnitude, each column's entries
