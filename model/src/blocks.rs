@@ -406,25 +406,38 @@ impl BlockProg {
         Fac::inverse2(&j, beyond, [floor(0), floor(1)])
     }
 
-    /// `Lu::factor_cols` of the Jacobian in the registers.
+    /// `Lu::factor_cols` of the Jacobian in the registers (`Lu::factor_scaled` where the block
+    /// has row scales).
     fn factor_cols(&self, r: &[f64], fac: &mut Fac) {
-        let n = self.unknowns.len();
         // No array of the sparse capacity zeroed for a dense block.
-        if n <= MAX_DENSE {
-            self.factor_cols_in(r, fac, &mut [0.0; MAX_DENSE][..n]);
+        if self.unknowns.len() <= MAX_DENSE {
+            self.factor_cols_sized::<MAX_DENSE>(r, fac);
         } else {
-            self.factor_cols_in(r, fac, &mut [0.0; crate::sparse::MAX_BLOCK][..n]);
+            self.factor_cols_sized::<{ crate::sparse::MAX_BLOCK }>(r, fac);
         }
     }
 
-    /// [`BlockProg::factor_cols`] with the column scales computed into `scale`.
+    /// [`BlockProg::factor_cols`] with its scales in arrays of capacity `CAP`: none zeroed for
+    /// row scales where the block has none (its rows share one unit, as most blocks' do).
     #[inline(always)]
-    fn factor_cols_in(&self, r: &[f64], fac: &mut Fac, scale: &mut [f64]) {
+    fn factor_cols_sized<const CAP: usize>(&self, r: &[f64], fac: &mut Fac) {
+        let n = self.unknowns.len();
+        let scale = &mut [0.0; CAP][..n];
+        if self.rows.is_empty() {
+            self.factor_cols_in(r, fac, scale, &mut []);
+        } else {
+            self.factor_cols_in(r, fac, scale, &mut [0.0; CAP][..n]);
+        }
+    }
+
+    /// [`BlockProg::factor_cols`] with the column scales computed into `scale` and the row
+    /// scales into `rows` (empty where the block has none).
+    #[inline(always)]
+    fn factor_cols_in(&self, r: &[f64], fac: &mut Fac, scale: &mut [f64], rows: &mut [f64]) {
         let n = scale.len();
         for (c, s) in scale.iter_mut().enumerate() {
             *s = max_abs(self.col[c].iter().map(|&k| r[k as usize]));
         }
-        let rows = &mut [0.0; crate::sparse::MAX_BLOCK][..self.rows.len()];
         for (s, &k) in rows.iter_mut().zip(&self.rows) {
             *s = r[k as usize];
         }
